@@ -1,0 +1,1 @@
+//! Experiments, SHPB signal processing, fitting.

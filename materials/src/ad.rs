@@ -1,0 +1,61 @@
+//! Derivatives by forward-mode AD (num-dual) of the generic model code: the consistent
+//! tangent dσ/dF and parameter sensitivities dσ/dp.
+
+use crate::error::MaterialError;
+use crate::material::{Model, State};
+use crate::scalar::c;
+use crate::tensor::M3;
+use nalgebra::{SMatrix, SVector};
+use num_dual::DualSVec64;
+
+/// `v` as a dual number with unit derivative in direction `i`.
+pub fn seed<const N: usize>(v: f64, i: usize) -> DualSVec64<N> {
+    DualSVec64::from_re(v).derivative(i)
+}
+
+/// The derivative part of `x` as a vector (zero if it carries none).
+pub fn eps<const N: usize>(x: &DualSVec64<N>) -> SVector<f64, N> {
+    x.eps.0.unwrap_or_else(SVector::zeros)
+}
+
+/// Cauchy stress, its consistent tangent dσ_ij/dF_kl as a 9×9 matrix (row index 3i+j,
+/// column index 3k+l) and the new state, for one update from `old`.
+pub fn tangent<M: Model<f64>>(
+    model: &M,
+    f: &M3<f64>,
+    dt: f64,
+    old: &State<f64>,
+) -> Result<(M3<f64>, SMatrix<f64, 9, 9>, State<f64>), MaterialError> {
+    type D9 = DualSVec64<9>;
+    let m = model.map_params(|_, v| c::<D9>(v));
+    let fd = M3::from_fn(|i, j| seed::<9>(f[(i, j)], 3 * i + j));
+    let old_d = old.map(|v| c::<D9>(v));
+    let (sigma, new) = m.update(&fd, dt, &old_d)?;
+    let mut d = SMatrix::<f64, 9, 9>::zeros();
+    for i in 0..3 {
+        for j in 0..3 {
+            d.set_row(3 * i + j, &eps(&sigma[(i, j)]).transpose());
+        }
+    }
+    Ok((sigma.map(|s| s.re), d, new.re()))
+}
+
+/// Cauchy stress and dσ/dp for the `P` named parameters, for one update from `old`.
+pub fn sensitivities<M: Model<f64>, const P: usize>(
+    model: &M,
+    names: &[&str; P],
+    f: &M3<f64>,
+    dt: f64,
+    old: &State<f64>,
+) -> Result<(M3<f64>, [M3<f64>; P]), MaterialError> {
+    let m = model.map_params(|name, v| match names.iter().position(|n| *n == name) {
+        Some(k) => seed::<P>(v, k),
+        None => c(v),
+    });
+    let (sigma, _) = m.update(&f.map(c), dt, &old.map(c))?;
+    let mut out = [M3::zeros(); P];
+    for (k, ds) in out.iter_mut().enumerate() {
+        *ds = sigma.map(|s| eps(&s)[k]);
+    }
+    Ok((sigma.map(|s| s.re), out))
+}

@@ -1,0 +1,1 @@
+//! Single-point driver (in progress).

@@ -1,0 +1,63 @@
+//! Neo-Hooke elasticity with thermal expansion coupling (eq. 4.12-4.13, 4.21-4.24).
+//!
+//! ψ = Λ/2 (ln J)² + G/2 (tr b − 3) − G ln J  [J/m³ of reference volume]
+//! τ = Λ ln J I + G (b − I) − 3 α_σ κ (θ − θ0) I   (Kirchhoff, Pa)
+//! with Λ = Eν/((1+ν)(1−2ν)), G = E/(2(1+ν)), κ = Λ + 2G/3.
+
+use crate::parameter_set;
+use crate::scalar::{c, Scalar};
+use crate::tensor::{det, identity, trace, M3};
+
+parameter_set! {
+    /// Elastic constants and reference density.
+    Elastic {
+        /// Young's modulus E [Pa]
+        e => "E",
+        /// Poisson's ratio ν [-]
+        nu => "nu",
+        /// reference density ρ0 [kg/m³]
+        rho => "rho",
+    }
+}
+
+impl<D: Scalar> Elastic<D> {
+    /// Shear modulus G [Pa].
+    pub fn shear_modulus(&self) -> D {
+        self.e / (c::<D>(2.0) * (c::<D>(1.0) + self.nu))
+    }
+
+    /// Lamé constant Λ [Pa].
+    pub fn lambda(&self) -> D {
+        self.e * self.nu / ((c::<D>(1.0) + self.nu) * (c::<D>(1.0) - c::<D>(2.0) * self.nu))
+    }
+
+    /// Bulk modulus κ = Λ + 2G/3 [Pa].
+    pub fn bulk_modulus(&self) -> D {
+        self.lambda() + self.shear_modulus() * c::<D>(2.0 / 3.0)
+    }
+
+    /// P-wave modulus Λ + 2G [Pa], for the dilatational wave speed √((Λ+2G)/ρ).
+    pub fn p_wave_modulus(&self) -> D {
+        self.lambda() + self.shear_modulus() * c::<D>(2.0)
+    }
+
+    /// Kirchhoff stress of the elastic part `fe`, with the thermal coupling term of
+    /// eq. 4.22 for a temperature rise `dtheta` = θ − θ0 and expansion coefficient
+    /// `alpha_sigma`.
+    pub fn tau(&self, fe: &M3<D>, dtheta: D, alpha_sigma: D) -> M3<D> {
+        let b = fe * fe.transpose();
+        let ln_j = det(fe).ln();
+        let g = self.shear_modulus();
+        let p = self.lambda() * ln_j - c::<D>(3.0) * alpha_sigma * self.bulk_modulus() * dtheta;
+        (b - identity::<D>()) * g + identity::<D>() * p
+    }
+
+    /// Strain energy density ψ(F) per reference volume (isothermal), eq. 4.12.
+    pub fn energy(&self, f: &M3<D>) -> D {
+        let ln_j = det(f).ln();
+        let b = f * f.transpose();
+        let g = self.shear_modulus();
+        self.lambda() * c::<D>(0.5) * ln_j * ln_j + g * c::<D>(0.5) * (trace(&b) - c::<D>(3.0))
+            - g * ln_j
+    }
+}

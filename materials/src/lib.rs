@@ -1,0 +1,34 @@
+//! Finite-strain material models of thesis chapter 4, written once in generic scalar code
+//! so that `num-dual` gives consistent tangents and parameter sensitivities from the same
+//! source, plus a homogeneous single-material-point driver (MTest-like).
+//!
+//! Units are SI throughout (Pa, K, kg/m³, s). Stress is Cauchy `sigma` unless named
+//! otherwise (`tau` Kirchhoff).
+
+pub mod ad;
+pub mod any_model;
+pub mod driver;
+pub mod elastic;
+pub mod error;
+pub mod expm;
+pub mod flow_stress;
+pub mod local_newton;
+pub mod material;
+pub mod neo_hooke;
+pub mod param_file;
+pub mod params;
+pub mod plasticity;
+pub mod return_principal;
+pub mod return_reference;
+pub mod scalar;
+pub mod tensor;
+pub mod verify;
+
+pub use error::MaterialError;
+pub use flow_stress::FlowStress;
+pub use material::{Material, Model, State};
+pub use neo_hooke::NeoHooke;
+pub use any_model::AnyModel;
+pub use param_file::{load_material, MaterialFile};
+pub use plasticity::{ElastoPlastic, ReturnMap};
+pub use scalar::Scalar;

@@ -1,0 +1,76 @@
+//! Safeguarded Newton solver for the local return-mapping systems.
+//!
+//! Full Newton steps with a backtracking line search on ‖r‖∞, and the plastic arc length
+//! kept above its previous value: a step that would make Δα negative is shortened to
+//! halve Δα instead. This is what keeps first yield with N < 1 (infinite slope of α^N at
+//! α = 0) convergent.
+
+use crate::error::MaterialError;
+use nalgebra::{Const, DimMin, SMatrix, SVector};
+
+/// Converged when the scaled residual is below this.
+pub const TOL: f64 = 1e-13;
+pub const MAX_ITERATIONS: usize = 60;
+
+/// Solve r(x) = 0 from `x0`. `eval` returns r and ∂r/∂x. Component `alpha_index` of x is
+/// kept ≥ `alpha_min`. Returns the root and the Jacobian there.
+pub fn solve<const N: usize>(
+    mut eval: impl FnMut(&SVector<f64, N>) -> (SVector<f64, N>, SMatrix<f64, N, N>),
+    x0: SVector<f64, N>,
+    alpha_index: usize,
+    alpha_min: f64,
+) -> Result<(SVector<f64, N>, SMatrix<f64, N, N>), MaterialError>
+where
+    Const<N>: DimMin<Const<N>, Output = Const<N>>,
+{
+    let mut x = x0;
+    let (mut r, mut k) = eval(&x);
+    for _ in 0..MAX_ITERATIONS {
+        let r_norm = r.amax();
+        if !r_norm.is_finite() {
+            return Err(MaterialError::NonFinite { what: "local residual" });
+        }
+        if r_norm < TOL {
+            return Ok((x, k));
+        }
+        let dx = k
+            .lu()
+            .solve(&(-r))
+            .ok_or(MaterialError::Singular { what: "return mapping" })?;
+        let mut step = 1.0;
+        let alpha_after = x[alpha_index] + dx[alpha_index];
+        if alpha_after < alpha_min && dx[alpha_index] < 0.0 {
+            step = 0.5 * (x[alpha_index] - alpha_min) / -dx[alpha_index];
+        }
+        let mut accepted = false;
+        for _ in 0..12 {
+            let trial = x + dx * step;
+            let (r_t, k_t) = eval(&trial);
+            if r_t.amax() < r_norm * (1.0 - 1e-4 * step) || r_t.amax() < TOL {
+                x = trial;
+                r = r_t;
+                k = k_t;
+                accepted = true;
+                break;
+            }
+            step *= 0.5;
+        }
+        if !accepted {
+            // No decrease is possible: the residual sits at round-off level.
+            if dx.amax() < 1e-12 {
+                return Ok((x, k));
+            }
+            return Err(MaterialError::ReturnMapNotConverged {
+                iterations: MAX_ITERATIONS,
+                residual: r_norm,
+            });
+        }
+        if (dx * step).amax() < 1e-15 {
+            return Ok((x, k));
+        }
+    }
+    Err(MaterialError::ReturnMapNotConverged {
+        iterations: MAX_ITERATIONS,
+        residual: r.amax(),
+    })
+}

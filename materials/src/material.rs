@@ -1,0 +1,105 @@
+//! The material interface shared by the single-point driver and the MPM solver.
+//!
+//! A pure update in the style of Ferrite.jl: `(σ, new_state) = f(F, Δt, old_state)`.
+//! The old state is never mutated, so a failed update leaves the history untouched.
+
+use crate::error::MaterialError;
+use crate::scalar::{c, Scalar};
+use crate::tensor::{identity, M3};
+use nalgebra::Matrix3;
+
+/// History of one material point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct State<D = f64> {
+    /// Inverse plastic deformation gradient F^p⁻¹ (identity for elastic models).
+    pub fp_inv: M3<D>,
+    /// Accumulated plastic arc length α (equivalent plastic strain) [-].
+    pub alpha: D,
+    /// Temperature θ [K].
+    pub theta: D,
+}
+
+impl<D: Scalar> State<D> {
+    /// Virgin state at temperature `theta`.
+    pub fn virgin(theta: D) -> Self {
+        State {
+            fp_inv: identity(),
+            alpha: c(0.0),
+            theta,
+        }
+    }
+
+    pub fn map<E: Scalar>(&self, f: impl Fn(D) -> E) -> State<E> {
+        State {
+            fp_inv: self.fp_inv.map(&f),
+            alpha: f(self.alpha),
+            theta: f(self.theta),
+        }
+    }
+
+    pub fn re(&self) -> State<f64> {
+        self.map(|x| x.re())
+    }
+}
+
+/// A material model written once for any scalar `D` (real or dual).
+pub trait Model<D: Scalar>: Clone + Send + Sync {
+    /// The same model with parameters of another scalar type.
+    type With<E: Scalar>: Model<E>;
+
+    /// Convert (or seed with dual parts) every parameter by name.
+    fn map_params<E: Scalar>(&self, f: impl FnMut(&'static str, D) -> E) -> Self::With<E>;
+
+    /// Names of all parameters, in a fixed order.
+    fn param_names(&self) -> Vec<&'static str>;
+
+    /// Value of the named parameter.
+    fn param(&self, name: &str) -> Option<D>;
+
+    /// Reference density ρ0 [kg/m³].
+    fn density(&self) -> D;
+
+    /// P-wave modulus Λ + 2G [Pa] (dilatational wave speed √(M/ρ) for the CFL limit).
+    fn p_wave_modulus(&self) -> D;
+
+    /// Initial state (reference temperature for thermal models).
+    fn initial_state(&self) -> State<D>;
+
+    /// Cauchy stress and new state from the total deformation gradient `f`, the time step
+    /// `dt` [s] and the previous state.
+    fn update(&self, f: &M3<D>, dt: f64, old: &State<D>)
+        -> Result<(M3<D>, State<D>), MaterialError>;
+}
+
+/// Object-safe, real-valued view of a model, as the MPM solver uses it.
+pub trait Material: Send + Sync {
+    fn density(&self) -> f64;
+    fn p_wave_modulus(&self) -> f64;
+    fn initial_state(&self) -> State<f64>;
+    fn update(
+        &self,
+        f: &Matrix3<f64>,
+        dt: f64,
+        old: &State<f64>,
+    ) -> Result<(Matrix3<f64>, State<f64>), MaterialError>;
+}
+
+impl<T: Model<f64>> Material for T {
+    fn density(&self) -> f64 {
+        Model::density(self)
+    }
+    fn p_wave_modulus(&self) -> f64 {
+        Model::p_wave_modulus(self)
+    }
+    fn initial_state(&self) -> State<f64> {
+        Model::initial_state(self)
+    }
+    fn update(
+        &self,
+        f: &Matrix3<f64>,
+        dt: f64,
+        old: &State<f64>,
+    ) -> Result<(Matrix3<f64>, State<f64>), MaterialError> {
+        Model::update(self, f, dt, old)
+    }
+}

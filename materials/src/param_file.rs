@@ -1,0 +1,215 @@
+//! Material parameter files (TOML) with validation of every field.
+//!
+//! ```toml
+//! name = "AISI 4340"
+//! model = "johnson-cook"          # "neo-hooke" | "j2" | "johnson-cook"
+//! return_map = "principal"        # optional: "principal" (default) | "reference"
+//! [elastic]      # E [Pa], nu [-], rho [kg/m³]
+//! [johnson_cook] # A, B [Pa], N, C, M [-], alpha_dot0 [1/s], theta_m [K]
+//! [voce]         # (j2) tau0, tau_inf, h [Pa], eta [-]
+//! [thermal]      # (johnson-cook) theta0 [K], c_theta [J/(kg K)], alpha_sigma [1/K], gamma_tq [-]
+//! ```
+//! An unknown or missing key, a value out of range, or a wrong type is an error naming the
+//! file, the field and the allowed range.
+
+use crate::any_model::AnyModel;
+use crate::elastic::Elastic;
+use crate::flow_stress::{FlowStress, JohnsonCookLaw, Voce};
+use crate::neo_hooke::NeoHooke;
+use crate::plasticity::{ElastoPlastic, ReturnMap, Thermal};
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+use toml::{Table, Value};
+
+#[derive(Debug, Error)]
+pub enum ParamFileError {
+    #[error("{file}: cannot read: {source}")]
+    Io { file: PathBuf, source: std::io::Error },
+    #[error("{file}: TOML syntax: {message}")]
+    Syntax { file: PathBuf, message: String },
+    #[error("{file}: field `{field}`: {problem}")]
+    Field { file: PathBuf, field: String, problem: String },
+}
+
+/// A loaded parameter file.
+#[derive(Debug, Clone)]
+pub struct MaterialFile {
+    pub name: String,
+    pub model: AnyModel<f64>,
+}
+
+/// Allowed open/closed interval of a field.
+#[derive(Clone, Copy)]
+struct Range {
+    lo: f64,
+    lo_open: bool,
+    hi: f64,
+    hi_open: bool,
+}
+
+impl Range {
+    const fn positive() -> Self {
+        Range { lo: 0.0, lo_open: true, hi: f64::INFINITY, hi_open: true }
+    }
+    const fn non_negative() -> Self {
+        Range { lo: 0.0, lo_open: false, hi: f64::INFINITY, hi_open: true }
+    }
+    const fn closed(lo: f64, hi: f64) -> Self {
+        Range { lo, lo_open: false, hi, hi_open: false }
+    }
+    const fn open(lo: f64, hi: f64) -> Self {
+        Range { lo, lo_open: true, hi, hi_open: true }
+    }
+    fn contains(&self, v: f64) -> bool {
+        let above = if self.lo_open { v > self.lo } else { v >= self.lo };
+        let below = if self.hi_open { v < self.hi } else { v <= self.hi };
+        v.is_finite() && above && below
+    }
+    fn describe(&self) -> String {
+        format!(
+            "{}{}, {}{}",
+            if self.lo_open { "(" } else { "[" },
+            self.lo,
+            if self.hi.is_infinite() { "inf".to_string() } else { self.hi.to_string() },
+            if self.hi_open { ")" } else { "]" }
+        )
+    }
+}
+
+struct Reader<'a> {
+    file: &'a Path,
+}
+
+impl Reader<'_> {
+    fn err(&self, field: impl Into<String>, problem: impl Into<String>) -> ParamFileError {
+        ParamFileError::Field { file: self.file.to_path_buf(), field: field.into(), problem: problem.into() }
+    }
+
+    fn section<'t>(&self, root: &'t Table, name: &str) -> Result<&'t Table, ParamFileError> {
+        match root.get(name) {
+            Some(Value::Table(t)) => Ok(t),
+            Some(_) => Err(self.err(name, "expected a table [section]")),
+            None => Err(self.err(name, "missing section")),
+        }
+    }
+
+    /// Read the named keys of a section with their ranges; reject unknown keys.
+    fn numbers<const K: usize>(
+        &self,
+        table: &Table,
+        section: &str,
+        spec: [(&str, Range); K],
+    ) -> Result<[f64; K], ParamFileError> {
+        for key in table.keys() {
+            if !spec.iter().any(|(k, _)| k == key) {
+                let allowed: Vec<&str> = spec.iter().map(|(k, _)| *k).collect();
+                return Err(self.err(format!("{section}.{key}"), format!("unknown key; allowed: {}", allowed.join(", "))));
+            }
+        }
+        let mut out = [0.0; K];
+        for (slot, (key, range)) in out.iter_mut().zip(spec.iter()) {
+            let field = format!("{section}.{key}");
+            let v = match table.get(*key) {
+                Some(Value::Float(x)) => *x,
+                Some(Value::Integer(i)) => *i as f64,
+                Some(_) => return Err(self.err(field, "expected a number")),
+                None => return Err(self.err(field, format!("missing; expected a number in {}", range.describe()))),
+            };
+            if !range.contains(v) {
+                return Err(self.err(field, format!("value {v} outside the allowed range {}", range.describe())));
+            }
+            *slot = v;
+        }
+        Ok(out)
+    }
+
+    fn string<'t>(&self, root: &'t Table, key: &str) -> Result<Option<&'t str>, ParamFileError> {
+        match root.get(key) {
+            Some(Value::String(s)) => Ok(Some(s)),
+            Some(_) => Err(self.err(key, "expected a string")),
+            None => Ok(None),
+        }
+    }
+}
+
+/// Parse a parameter file from its text; `file` names it in errors.
+pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFileError> {
+    let r = Reader { file };
+    let root: Table = text
+        .parse()
+        .map_err(|e: toml::de::Error| ParamFileError::Syntax { file: file.to_path_buf(), message: e.to_string() })?;
+    let model_kind = r.string(&root, "model")?.ok_or_else(|| r.err("model", "missing; expected \"neo-hooke\", \"j2\" or \"johnson-cook\""))?;
+    let allowed_top: &[&str] = match model_kind {
+        "neo-hooke" => &["name", "model", "elastic"],
+        "j2" => &["name", "model", "return_map", "elastic", "voce"],
+        "johnson-cook" => &["name", "model", "return_map", "elastic", "johnson_cook", "thermal"],
+        other => return Err(r.err("model", format!("unknown model \"{other}\"; expected \"neo-hooke\", \"j2\" or \"johnson-cook\""))),
+    };
+    for key in root.keys() {
+        if !allowed_top.contains(&key.as_str()) {
+            return Err(r.err(key.as_str(), format!("unknown key for model \"{model_kind}\"; allowed: {}", allowed_top.join(", "))));
+        }
+    }
+    let name = r.string(&root, "name")?.unwrap_or("unnamed").to_string();
+    let [e, nu, rho] = r.numbers(
+        r.section(&root, "elastic")?,
+        "elastic",
+        [("E", Range::positive()), ("nu", Range::open(-1.0, 0.5)), ("rho", Range::positive())],
+    )?;
+    let elastic = Elastic { e, nu, rho };
+    let return_map = match r.string(&root, "return_map")? {
+        None | Some("principal") => ReturnMap::Principal,
+        Some("reference") => ReturnMap::Reference,
+        Some(other) => return Err(r.err("return_map", format!("unknown \"{other}\"; expected \"principal\" or \"reference\""))),
+    };
+    let model = match model_kind {
+        "neo-hooke" => AnyModel::NeoHooke(NeoHooke { elastic, theta0: 293.15 }),
+        "j2" => {
+            let [tau0, tau_inf, eta, h] = r.numbers(
+                r.section(&root, "voce")?,
+                "voce",
+                [("tau0", Range::positive()), ("tau_inf", Range::positive()), ("eta", Range::non_negative()), ("h", Range::non_negative())],
+            )?;
+            AnyModel::ElastoPlastic(ElastoPlastic {
+                elastic,
+                flow: FlowStress::Voce(Voce { tau0, tau_inf, eta, h }),
+                thermal: Thermal { theta0: 293.15, c_theta: 1.0, alpha_sigma: 0.0, gamma_tq: 0.0 },
+                return_map,
+            })
+        }
+        _ => {
+            let [theta0, c_theta, alpha_sigma, gamma_tq] = r.numbers(
+                r.section(&root, "thermal")?,
+                "thermal",
+                [("theta0", Range::positive()), ("c_theta", Range::positive()), ("alpha_sigma", Range::non_negative()), ("gamma_tq", Range::closed(0.0, 1.0))],
+            )?;
+            let [a, b, n, c, m, alpha_dot0, theta_m] = r.numbers(
+                r.section(&root, "johnson_cook")?,
+                "johnson_cook",
+                [
+                    ("A", Range::positive()),
+                    ("B", Range::non_negative()),
+                    ("N", Range::open(0.0, 5.0)),
+                    ("C", Range::non_negative()),
+                    ("M", Range::positive()),
+                    ("alpha_dot0", Range::positive()),
+                    ("theta_m", Range { lo: theta0, lo_open: true, hi: f64::INFINITY, hi_open: true }),
+                ],
+            )?;
+            AnyModel::ElastoPlastic(ElastoPlastic {
+                elastic,
+                flow: FlowStress::JohnsonCook(JohnsonCookLaw { a, b, n, c, m, alpha_dot0, theta_m }),
+                thermal: Thermal { theta0, c_theta, alpha_sigma, gamma_tq },
+                return_map,
+            })
+        }
+    };
+    Ok(MaterialFile { name, model })
+}
+
+/// Load and validate a parameter file.
+pub fn load_material(path: impl AsRef<Path>) -> Result<MaterialFile, ParamFileError> {
+    let path = path.as_ref();
+    let text = std::fs::read_to_string(path).map_err(|source| ParamFileError::Io { file: path.to_path_buf(), source })?;
+    parse_material(&text, path)
+}

@@ -1,0 +1,164 @@
+//! Finite-strain J2 thermo-visco-plasticity on a Neo-Hooke elastic law (thesis 4.3,
+//! algorithms 3 and 4).
+//!
+//! - Multiplicative split F = Fe Fp; history `fp_inv` = Fp⁻¹, `alpha`, `theta`.
+//! - Trial Fe = F Fp_n⁻¹; von Mises yield φ = τ_VM − τ_y(α, α̇, θ_n), α̇ = Δα/Δt.
+//! - Plastic flow by the implicit exponential map, eq. 4.48:
+//!   Fe = exp(−Δα √(3/2) N) F Fp_n⁻¹, N = dev τ / ‖dev τ‖.
+//! - Adiabatic heating after the return, eq. 4.50 with Kirchhoff flow stress:
+//!   θ = θ_n + γ_TQ/(ρ0 c_θ) Δα τ_y.
+//!
+//! With a `Voce` flow stress this is the rate-independent J2 model (eq. 4.51); with a
+//! `JohnsonCook` flow stress the Johnson-Cook model (eq. 4.52).
+//!
+//! The local problem is solved in `f64` (reference 10-unknown Newton or the fast
+//! principal-stretch return). For dual scalars one more Newton step is taken in dual
+//! arithmetic with the converged real Jacobian: x = x* − K⁻¹ r(x*), which is the implicit
+//! function theorem dx/dp = −K⁻¹ ∂r/∂p, so derivatives never pass through the iterations.
+
+use crate::elastic::Elastic;
+use crate::error::MaterialError;
+use crate::flow_stress::FlowStress;
+use crate::material::{Model, State};
+use crate::parameter_set;
+use crate::scalar::{c, Scalar};
+use crate::tensor::{det, lift, re, von_mises, M3};
+use crate::{return_principal, return_reference};
+
+parameter_set! {
+    /// Thermal constants (eq. 4.22-4.23, 4.50).
+    Thermal {
+        /// reference (stress-free) temperature θ0 [K]
+        theta0 => "theta0",
+        /// specific heat capacity c_θ [J/(kg K)]
+        c_theta => "c_theta",
+        /// thermal expansion coefficient α_σ [1/K]
+        alpha_sigma => "alpha_sigma",
+        /// Taylor-Quinney coefficient γ_TQ [-]
+        gamma_tq => "gamma_tq",
+    }
+}
+
+/// Which algorithm solves the local return mapping.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ReturnMap {
+    /// Thesis algorithm 3: Newton on the 9 entries of Fp⁻¹ and α (10 unknowns).
+    Reference,
+    /// Equivalent return in the principal logarithmic stretches of the trial be
+    /// (4 unknowns), valid because the model is isotropic.
+    Principal,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ElastoPlastic<D = f64> {
+    pub elastic: Elastic<D>,
+    pub flow: FlowStress<D>,
+    pub thermal: Thermal<D>,
+    pub return_map: ReturnMap,
+}
+
+impl<D: Scalar> ElastoPlastic<D> {
+    /// Kirchhoff stress of the elastic part at temperature `theta`.
+    pub fn tau(&self, fe: &M3<D>, theta: D) -> M3<D> {
+        self.elastic
+            .tau(fe, theta - self.thermal.theta0, self.thermal.alpha_sigma)
+    }
+
+    /// Flow stress after a plastic increment `dalpha` over `dt` at temperature `theta`.
+    pub fn tau_y(&self, alpha: D, dalpha: D, dt: f64, theta: D) -> D {
+        self.flow
+            .tau_y(alpha, dalpha / c::<D>(dt), theta, self.thermal.theta0)
+    }
+
+    /// The same model with real parameters.
+    pub fn re(&self) -> ElastoPlastic<f64> {
+        self.map_params(|_, v| v.re())
+    }
+
+    /// The same model with constant parameters of scalar type `E`.
+    pub fn lift<E: Scalar>(&self) -> ElastoPlastic<E> {
+        self.map_params(|_, v| c::<E>(v.re()))
+    }
+}
+
+impl<D: Scalar> Model<D> for ElastoPlastic<D> {
+    type With<E: Scalar> = ElastoPlastic<E>;
+
+    fn map_params<E: Scalar>(&self, mut f: impl FnMut(&'static str, D) -> E) -> ElastoPlastic<E> {
+        ElastoPlastic {
+            elastic: self.elastic.map(&mut f),
+            flow: self.flow.map(&mut f),
+            thermal: self.thermal.map(&mut f),
+            return_map: self.return_map,
+        }
+    }
+
+    fn param_names(&self) -> Vec<&'static str> {
+        let mut names = Elastic::<D>::NAMES.to_vec();
+        names.extend_from_slice(self.flow.names());
+        names.extend_from_slice(Thermal::<D>::NAMES);
+        names
+    }
+
+    fn param(&self, name: &str) -> Option<D> {
+        let mut found = None;
+        self.map_params(|n, v| {
+            if n == name {
+                found = Some(v);
+            }
+            v
+        });
+        found
+    }
+
+    fn density(&self) -> D {
+        self.elastic.rho
+    }
+
+    fn p_wave_modulus(&self) -> D {
+        self.elastic.p_wave_modulus()
+    }
+
+    fn initial_state(&self) -> State<D> {
+        State::virgin(self.thermal.theta0)
+    }
+
+    fn update(&self, f: &M3<D>, dt: f64, old: &State<D>) -> Result<(M3<D>, State<D>), MaterialError> {
+        let j = det(f);
+        if j.re() <= 0.0 || !j.re().is_finite() {
+            return Err(MaterialError::InvertedDeformation { det_f: j.re() });
+        }
+        let fe_trial = f * old.fp_inv;
+        let tau_trial = self.tau(&fe_trial, old.theta);
+        let phi_trial = von_mises(&tau_trial) - self.tau_y(old.alpha, c(0.0), dt, old.theta);
+        if phi_trial.re() <= 0.0 {
+            return Ok((tau_trial / j, *old));
+        }
+        let model = self.re();
+        let (f_re, old_re) = (re(f), old.re());
+        let (fp_inv_re, alpha_re) = match self.return_map {
+            ReturnMap::Reference => return_reference::solve(&model, &f_re, &old_re, dt)?,
+            ReturnMap::Principal => return_principal::solve(&model, &f_re, &old_re, dt)?,
+        };
+        let (fp_inv, alpha) = if D::NDERIV == 0 {
+            (lift(&fp_inv_re), c::<D>(alpha_re))
+        } else {
+            return_reference::implicit_step(self, f, old, dt, &fp_inv_re, alpha_re)?
+        };
+        let tau = self.tau(&(f * fp_inv), old.theta);
+        let dalpha = alpha - old.alpha;
+        let heating = self.thermal.gamma_tq / (self.elastic.rho * self.thermal.c_theta)
+            * dalpha
+            * self.tau_y(alpha, dalpha, dt, old.theta);
+        let new = State {
+            fp_inv,
+            alpha,
+            theta: old.theta + heating,
+        };
+        let sigma = tau / j;
+        if !sigma.iter().all(|s| s.re().is_finite()) {
+            return Err(MaterialError::NonFinite { what: "Cauchy stress" });
+        }
+        Ok((sigma, new))
+    }
+}

@@ -1,0 +1,77 @@
+//! Small generic helpers on 3×3 tensors (`nalgebra::Matrix3<D>`), valid for real and dual
+//! scalars alike. No Voigt orders: tensors stay 3×3.
+
+use crate::scalar::{c, Scalar};
+use nalgebra::Matrix3;
+
+pub type M3<D> = Matrix3<D>;
+
+pub fn identity<D: Scalar>() -> M3<D> {
+    M3::identity()
+}
+
+pub fn trace<D: Scalar>(a: &M3<D>) -> D {
+    a[(0, 0)] + a[(1, 1)] + a[(2, 2)]
+}
+
+pub fn det<D: Scalar>(a: &M3<D>) -> D {
+    a[(0, 0)] * (a[(1, 1)] * a[(2, 2)] - a[(1, 2)] * a[(2, 1)])
+        - a[(0, 1)] * (a[(1, 0)] * a[(2, 2)] - a[(1, 2)] * a[(2, 0)])
+        + a[(0, 2)] * (a[(1, 0)] * a[(2, 1)] - a[(1, 1)] * a[(2, 0)])
+}
+
+/// Inverse by the adjugate; `None` if the determinant's real part is zero.
+pub fn inverse<D: Scalar>(a: &M3<D>) -> Option<M3<D>> {
+    let d = det(a);
+    if d.re() == 0.0 || !d.re().is_finite() {
+        return None;
+    }
+    let inv_d = d.recip();
+    let m = |i: usize, j: usize| a[(i, j)];
+    let cof = M3::new(
+        m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1),
+        m(0, 2) * m(2, 1) - m(0, 1) * m(2, 2),
+        m(0, 1) * m(1, 2) - m(0, 2) * m(1, 1),
+        m(1, 2) * m(2, 0) - m(1, 0) * m(2, 2),
+        m(0, 0) * m(2, 2) - m(0, 2) * m(2, 0),
+        m(0, 2) * m(1, 0) - m(0, 0) * m(1, 2),
+        m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0),
+        m(0, 1) * m(2, 0) - m(0, 0) * m(2, 1),
+        m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0),
+    );
+    Some(cof * inv_d)
+}
+
+/// Deviatoric part `a − tr(a)/3 I`.
+pub fn dev<D: Scalar>(a: &M3<D>) -> M3<D> {
+    a - identity::<D>() * (trace(a) / c::<D>(3.0))
+}
+
+/// Double contraction `a : b`.
+pub fn ddot<D: Scalar>(a: &M3<D>, b: &M3<D>) -> D {
+    a.component_mul(b).iter().fold(c::<D>(0.0), |s, &x| s + x)
+}
+
+/// Frobenius norm `‖a‖ = √(a : a)`.
+pub fn norm<D: Scalar>(a: &M3<D>) -> D {
+    ddot(a, a).sqrt()
+}
+
+/// von Mises equivalent `√(3/2) ‖dev a‖`.
+pub fn von_mises<D: Scalar>(a: &M3<D>) -> D {
+    norm(&dev(a)) * c::<D>(1.5f64.sqrt())
+}
+
+/// Real part of every entry.
+pub fn re<D: Scalar>(a: &M3<D>) -> M3<f64> {
+    a.map(|x| x.re())
+}
+
+/// Lift a real matrix to constant scalars.
+pub fn lift<D: Scalar>(a: &M3<f64>) -> M3<D> {
+    a.map(|x| c::<D>(x))
+}
+
+pub fn is_finite(a: &M3<f64>) -> bool {
+    a.iter().all(|x| x.is_finite())
+}
