@@ -1,1 +1,4 @@
-//! Experiments, SHPB signal processing, fitting.
+//! Experiments, SHPB signal processing, Johnson-Cook fitting, charts, and the `mpw`
+//! subcommands (one module per subcommand in `cli`).
+
+pub mod cli;

@@ -1,1 +1,33 @@
-fn main() {}
+//! `mpw`: the material-point workbench command line.
+
+use clap::{Parser, Subcommand};
+
+#[derive(Parser)]
+#[command(name = "mpw", version, about = "Johnson-Cook parameters you can trust: material models, single-point driver, MPM, fitting")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Drive one material point along a load path; write CSV and a stress-strain chart.
+    Drive(fitting::cli::drive::Args),
+    /// Run the verification cases and print one table row per case.
+    Verify(fitting::cli::verify::Args),
+    /// Measure the cost of material updates (ns per update).
+    Bench(fitting::cli::bench::Args),
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Drive(a) => fitting::cli::drive::run(a),
+        Command::Verify(a) => fitting::cli::verify::run(a),
+        Command::Bench(a) => fitting::cli::bench::run(a),
+    };
+    if let Err(e) = result {
+        eprintln!("error: {e:#}");
+        std::process::exit(1);
+    }
+}

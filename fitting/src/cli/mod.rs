@@ -1,0 +1,5 @@
+//! One module per `mpw` subcommand: its clap `Args` and its `run`.
+
+pub mod bench;
+pub mod drive;
+pub mod verify;
