@@ -46,7 +46,12 @@ impl<D: Scalar> Model<D> for AnyModel<D> {
     fn initial_state(&self) -> State<D> {
         each!(self, m => m.initial_state())
     }
-    fn update(&self, f: &M3<D>, dt: f64, old: &State<D>) -> Result<(M3<D>, State<D>), MaterialError> {
+    fn update(
+        &self,
+        f: &M3<D>,
+        dt: f64,
+        old: &State<D>,
+    ) -> Result<(M3<D>, State<D>), MaterialError> {
         each!(self, m => m.update(f, dt, old))
     }
 }

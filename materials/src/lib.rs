@@ -24,11 +24,11 @@ pub mod scalar;
 pub mod tensor;
 pub mod verify;
 
+pub use any_model::AnyModel;
 pub use error::MaterialError;
 pub use flow_stress::FlowStress;
 pub use material::{Material, Model, State};
 pub use neo_hooke::NeoHooke;
-pub use any_model::AnyModel;
 pub use param_file::{load_material, MaterialFile};
 pub use plasticity::{ElastoPlastic, ReturnMap};
 pub use scalar::Scalar;

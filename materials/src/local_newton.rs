@@ -28,15 +28,16 @@ where
     for _ in 0..MAX_ITERATIONS {
         let r_norm = r.amax();
         if !r_norm.is_finite() {
-            return Err(MaterialError::NonFinite { what: "local residual" });
+            return Err(MaterialError::NonFinite {
+                what: "local residual",
+            });
         }
         if r_norm < TOL {
             return Ok((x, k));
         }
-        let dx = k
-            .lu()
-            .solve(&(-r))
-            .ok_or(MaterialError::Singular { what: "return mapping" })?;
+        let dx = k.lu().solve(&(-r)).ok_or(MaterialError::Singular {
+            what: "return mapping",
+        })?;
         let mut step = 1.0;
         let alpha_after = x[alpha_index] + dx[alpha_index];
         if alpha_after < alpha_min && dx[alpha_index] < 0.0 {

@@ -67,8 +67,12 @@ pub trait Model<D: Scalar>: Clone + Send + Sync {
 
     /// Cauchy stress and new state from the total deformation gradient `f`, the time step
     /// `dt` [s] and the previous state.
-    fn update(&self, f: &M3<D>, dt: f64, old: &State<D>)
-        -> Result<(M3<D>, State<D>), MaterialError>;
+    fn update(
+        &self,
+        f: &M3<D>,
+        dt: f64,
+        old: &State<D>,
+    ) -> Result<(M3<D>, State<D>), MaterialError>;
 }
 
 /// Object-safe, real-valued view of a model, as the MPM solver uses it.

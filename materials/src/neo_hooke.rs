@@ -53,7 +53,12 @@ impl<D: Scalar> Model<D> for NeoHooke<D> {
         State::virgin(c(self.theta0))
     }
 
-    fn update(&self, f: &M3<D>, _dt: f64, old: &State<D>) -> Result<(M3<D>, State<D>), MaterialError> {
+    fn update(
+        &self,
+        f: &M3<D>,
+        _dt: f64,
+        old: &State<D>,
+    ) -> Result<(M3<D>, State<D>), MaterialError> {
         let j = det(f);
         if j.re() <= 0.0 || !j.re().is_finite() {
             return Err(MaterialError::InvertedDeformation { det_f: j.re() });

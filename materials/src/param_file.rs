@@ -24,11 +24,18 @@ use toml::{Table, Value};
 #[derive(Debug, Error)]
 pub enum ParamFileError {
     #[error("{file}: cannot read: {source}")]
-    Io { file: PathBuf, source: std::io::Error },
+    Io {
+        file: PathBuf,
+        source: std::io::Error,
+    },
     #[error("{file}: TOML syntax: {message}")]
     Syntax { file: PathBuf, message: String },
     #[error("{file}: field `{field}`: {problem}")]
-    Field { file: PathBuf, field: String, problem: String },
+    Field {
+        file: PathBuf,
+        field: String,
+        problem: String,
+    },
 }
 
 /// A loaded parameter file.
@@ -49,20 +56,48 @@ struct Range {
 
 impl Range {
     const fn positive() -> Self {
-        Range { lo: 0.0, lo_open: true, hi: f64::INFINITY, hi_open: true }
+        Range {
+            lo: 0.0,
+            lo_open: true,
+            hi: f64::INFINITY,
+            hi_open: true,
+        }
     }
     const fn non_negative() -> Self {
-        Range { lo: 0.0, lo_open: false, hi: f64::INFINITY, hi_open: true }
+        Range {
+            lo: 0.0,
+            lo_open: false,
+            hi: f64::INFINITY,
+            hi_open: true,
+        }
     }
     const fn closed(lo: f64, hi: f64) -> Self {
-        Range { lo, lo_open: false, hi, hi_open: false }
+        Range {
+            lo,
+            lo_open: false,
+            hi,
+            hi_open: false,
+        }
     }
     const fn open(lo: f64, hi: f64) -> Self {
-        Range { lo, lo_open: true, hi, hi_open: true }
+        Range {
+            lo,
+            lo_open: true,
+            hi,
+            hi_open: true,
+        }
     }
     fn contains(&self, v: f64) -> bool {
-        let above = if self.lo_open { v > self.lo } else { v >= self.lo };
-        let below = if self.hi_open { v < self.hi } else { v <= self.hi };
+        let above = if self.lo_open {
+            v > self.lo
+        } else {
+            v >= self.lo
+        };
+        let below = if self.hi_open {
+            v < self.hi
+        } else {
+            v <= self.hi
+        };
         v.is_finite() && above && below
     }
     fn describe(&self) -> String {
@@ -70,7 +105,11 @@ impl Range {
             "{}{}, {}{}",
             if self.lo_open { "(" } else { "[" },
             self.lo,
-            if self.hi.is_infinite() { "inf".to_string() } else { self.hi.to_string() },
+            if self.hi.is_infinite() {
+                "inf".to_string()
+            } else {
+                self.hi.to_string()
+            },
             if self.hi_open { ")" } else { "]" }
         )
     }
@@ -82,7 +121,11 @@ struct Reader<'a> {
 
 impl Reader<'_> {
     fn err(&self, field: impl Into<String>, problem: impl Into<String>) -> ParamFileError {
-        ParamFileError::Field { file: self.file.to_path_buf(), field: field.into(), problem: problem.into() }
+        ParamFileError::Field {
+            file: self.file.to_path_buf(),
+            field: field.into(),
+            problem: problem.into(),
+        }
     }
 
     fn section<'t>(&self, root: &'t Table, name: &str) -> Result<&'t Table, ParamFileError> {
@@ -103,7 +146,10 @@ impl Reader<'_> {
         for key in table.keys() {
             if !spec.iter().any(|(k, _)| k == key) {
                 let allowed: Vec<&str> = spec.iter().map(|(k, _)| *k).collect();
-                return Err(self.err(format!("{section}.{key}"), format!("unknown key; allowed: {}", allowed.join(", "))));
+                return Err(self.err(
+                    format!("{section}.{key}"),
+                    format!("unknown key; allowed: {}", allowed.join(", ")),
+                ));
             }
         }
         let mut out = [0.0; K];
@@ -113,10 +159,18 @@ impl Reader<'_> {
                 Some(Value::Float(x)) => *x,
                 Some(Value::Integer(i)) => *i as f64,
                 Some(_) => return Err(self.err(field, "expected a number")),
-                None => return Err(self.err(field, format!("missing; expected a number in {}", range.describe()))),
+                None => {
+                    return Err(self.err(
+                        field,
+                        format!("missing; expected a number in {}", range.describe()),
+                    ))
+                }
             };
             if !range.contains(v) {
-                return Err(self.err(field, format!("value {v} outside the allowed range {}", range.describe())));
+                return Err(self.err(
+                    field,
+                    format!("value {v} outside the allowed range {}", range.describe()),
+                ));
             }
             *slot = v;
         }
@@ -137,43 +191,97 @@ pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFile
     let r = Reader { file };
     let root: Table = text
         .parse()
-        .map_err(|e: toml::de::Error| ParamFileError::Syntax { file: file.to_path_buf(), message: e.to_string() })?;
-    let model_kind = r.string(&root, "model")?.ok_or_else(|| r.err("model", "missing; expected \"neo-hooke\", \"j2\" or \"johnson-cook\""))?;
-    let allowed_top: &[&str] = match model_kind {
-        "neo-hooke" => &["name", "model", "elastic"],
-        "j2" => &["name", "model", "return_map", "elastic", "voce"],
-        "johnson-cook" => &["name", "model", "return_map", "elastic", "johnson_cook", "thermal"],
-        other => return Err(r.err("model", format!("unknown model \"{other}\"; expected \"neo-hooke\", \"j2\" or \"johnson-cook\""))),
-    };
+        .map_err(|e: toml::de::Error| ParamFileError::Syntax {
+            file: file.to_path_buf(),
+            message: e.to_string(),
+        })?;
+    let model_kind = r.string(&root, "model")?.ok_or_else(|| {
+        r.err(
+            "model",
+            "missing; expected \"neo-hooke\", \"j2\" or \"johnson-cook\"",
+        )
+    })?;
+    let allowed_top: &[&str] =
+        match model_kind {
+            "neo-hooke" => &["name", "model", "elastic"],
+            "j2" => &["name", "model", "return_map", "elastic", "voce"],
+            "johnson-cook" => &[
+                "name",
+                "model",
+                "return_map",
+                "elastic",
+                "johnson_cook",
+                "thermal",
+            ],
+            other => return Err(r.err(
+                "model",
+                format!(
+                    "unknown model \"{other}\"; expected \"neo-hooke\", \"j2\" or \"johnson-cook\""
+                ),
+            )),
+        };
     for key in root.keys() {
         if !allowed_top.contains(&key.as_str()) {
-            return Err(r.err(key.as_str(), format!("unknown key for model \"{model_kind}\"; allowed: {}", allowed_top.join(", "))));
+            return Err(r.err(
+                key.as_str(),
+                format!(
+                    "unknown key for model \"{model_kind}\"; allowed: {}",
+                    allowed_top.join(", ")
+                ),
+            ));
         }
     }
     let name = r.string(&root, "name")?.unwrap_or("unnamed").to_string();
     let [e, nu, rho] = r.numbers(
         r.section(&root, "elastic")?,
         "elastic",
-        [("E", Range::positive()), ("nu", Range::open(-1.0, 0.5)), ("rho", Range::positive())],
+        [
+            ("E", Range::positive()),
+            ("nu", Range::open(-1.0, 0.5)),
+            ("rho", Range::positive()),
+        ],
     )?;
     let elastic = Elastic { e, nu, rho };
     let return_map = match r.string(&root, "return_map")? {
         None | Some("principal") => ReturnMap::Principal,
         Some("reference") => ReturnMap::Reference,
-        Some(other) => return Err(r.err("return_map", format!("unknown \"{other}\"; expected \"principal\" or \"reference\""))),
+        Some(other) => {
+            return Err(r.err(
+                "return_map",
+                format!("unknown \"{other}\"; expected \"principal\" or \"reference\""),
+            ))
+        }
     };
     let model = match model_kind {
-        "neo-hooke" => AnyModel::NeoHooke(NeoHooke { elastic, theta0: 293.15 }),
+        "neo-hooke" => AnyModel::NeoHooke(NeoHooke {
+            elastic,
+            theta0: 293.15,
+        }),
         "j2" => {
             let [tau0, tau_inf, eta, h] = r.numbers(
                 r.section(&root, "voce")?,
                 "voce",
-                [("tau0", Range::positive()), ("tau_inf", Range::positive()), ("eta", Range::non_negative()), ("h", Range::non_negative())],
+                [
+                    ("tau0", Range::positive()),
+                    ("tau_inf", Range::positive()),
+                    ("eta", Range::non_negative()),
+                    ("h", Range::non_negative()),
+                ],
             )?;
             AnyModel::ElastoPlastic(ElastoPlastic {
                 elastic,
-                flow: FlowStress::Voce(Voce { tau0, tau_inf, eta, h }),
-                thermal: Thermal { theta0: 293.15, c_theta: 1.0, alpha_sigma: 0.0, gamma_tq: 0.0 },
+                flow: FlowStress::Voce(Voce {
+                    tau0,
+                    tau_inf,
+                    eta,
+                    h,
+                }),
+                thermal: Thermal {
+                    theta0: 293.15,
+                    c_theta: 1.0,
+                    alpha_sigma: 0.0,
+                    gamma_tq: 0.0,
+                },
                 return_map,
             })
         }
@@ -181,7 +289,12 @@ pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFile
             let [theta0, c_theta, alpha_sigma, gamma_tq] = r.numbers(
                 r.section(&root, "thermal")?,
                 "thermal",
-                [("theta0", Range::positive()), ("c_theta", Range::positive()), ("alpha_sigma", Range::non_negative()), ("gamma_tq", Range::closed(0.0, 1.0))],
+                [
+                    ("theta0", Range::positive()),
+                    ("c_theta", Range::positive()),
+                    ("alpha_sigma", Range::non_negative()),
+                    ("gamma_tq", Range::closed(0.0, 1.0)),
+                ],
             )?;
             let [a, b, n, c, m, alpha_dot0, theta_m] = r.numbers(
                 r.section(&root, "johnson_cook")?,
@@ -193,13 +306,34 @@ pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFile
                     ("C", Range::non_negative()),
                     ("M", Range::positive()),
                     ("alpha_dot0", Range::positive()),
-                    ("theta_m", Range { lo: theta0, lo_open: true, hi: f64::INFINITY, hi_open: true }),
+                    (
+                        "theta_m",
+                        Range {
+                            lo: theta0,
+                            lo_open: true,
+                            hi: f64::INFINITY,
+                            hi_open: true,
+                        },
+                    ),
                 ],
             )?;
             AnyModel::ElastoPlastic(ElastoPlastic {
                 elastic,
-                flow: FlowStress::JohnsonCook(JohnsonCookLaw { a, b, n, c, m, alpha_dot0, theta_m }),
-                thermal: Thermal { theta0, c_theta, alpha_sigma, gamma_tq },
+                flow: FlowStress::JohnsonCook(JohnsonCookLaw {
+                    a,
+                    b,
+                    n,
+                    c,
+                    m,
+                    alpha_dot0,
+                    theta_m,
+                }),
+                thermal: Thermal {
+                    theta0,
+                    c_theta,
+                    alpha_sigma,
+                    gamma_tq,
+                },
                 return_map,
             })
         }
@@ -210,6 +344,9 @@ pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFile
 /// Load and validate a parameter file.
 pub fn load_material(path: impl AsRef<Path>) -> Result<MaterialFile, ParamFileError> {
     let path = path.as_ref();
-    let text = std::fs::read_to_string(path).map_err(|source| ParamFileError::Io { file: path.to_path_buf(), source })?;
+    let text = std::fs::read_to_string(path).map_err(|source| ParamFileError::Io {
+        file: path.to_path_buf(),
+        source,
+    })?;
     parse_material(&text, path)
 }

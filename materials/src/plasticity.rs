@@ -123,7 +123,12 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
         State::virgin(self.thermal.theta0)
     }
 
-    fn update(&self, f: &M3<D>, dt: f64, old: &State<D>) -> Result<(M3<D>, State<D>), MaterialError> {
+    fn update(
+        &self,
+        f: &M3<D>,
+        dt: f64,
+        old: &State<D>,
+    ) -> Result<(M3<D>, State<D>), MaterialError> {
         let j = det(f);
         if j.re() <= 0.0 || !j.re().is_finite() {
             return Err(MaterialError::InvertedDeformation { det_f: j.re() });
@@ -157,7 +162,9 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
         };
         let sigma = tau / j;
         if !sigma.iter().all(|s| s.re().is_finite()) {
-            return Err(MaterialError::NonFinite { what: "Cauchy stress" });
+            return Err(MaterialError::NonFinite {
+                what: "Cauchy stress",
+            });
         }
         Ok((sigma, new))
     }

@@ -41,7 +41,12 @@ fn residual<E: Scalar>(
 }
 
 /// Solve the local problem in real arithmetic; returns (Fp⁻¹, α).
-pub fn solve(m: &ElastoPlastic<f64>, f: &M3<f64>, old: &State<f64>, dt: f64) -> Result<(M3<f64>, f64), MaterialError> {
+pub fn solve(
+    m: &ElastoPlastic<f64>,
+    f: &M3<f64>,
+    old: &State<f64>,
+    dt: f64,
+) -> Result<(M3<f64>, f64), MaterialError> {
     let fe_trial = f * old.fp_inv;
     let be_trial = fe_trial * fe_trial.transpose();
     let eigen = SymmetricEigen::new(be_trial);
@@ -56,9 +61,16 @@ pub fn solve(m: &ElastoPlastic<f64>, f: &M3<f64>, old: &State<f64>, dt: f64) -> 
     )?;
     let dalpha = y[3];
     // exp(−√(3/2) Δα N) = diag(λ_a / λ_a^tr) in the eigenbasis.
-    let ratio = Vector3::new(y[0] - eps_trial[0], y[1] - eps_trial[1], y[2] - eps_trial[2]).map(f64::exp);
+    let ratio = Vector3::new(
+        y[0] - eps_trial[0],
+        y[1] - eps_trial[1],
+        y[2] - eps_trial[2],
+    )
+    .map(f64::exp);
     let v = eigen.eigenvectors;
     let flow = v * M3::from_diagonal(&ratio) * v.transpose();
-    let f_inv = inverse(f).ok_or(MaterialError::InvertedDeformation { det_f: f.determinant() })?;
+    let f_inv = inverse(f).ok_or(MaterialError::InvertedDeformation {
+        det_f: f.determinant(),
+    })?;
     Ok((f_inv * flow * fe_trial, old.alpha + dalpha))
 }

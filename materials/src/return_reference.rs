@@ -32,7 +32,13 @@ fn unpack<E: Scalar>(x: &X<E>) -> (M3<E>, E) {
 }
 
 /// Residual of algorithm 3 (dimensionless: the yield function is scaled by G).
-pub fn residual<E: Scalar>(m: &ElastoPlastic<E>, x: &X<E>, f: &M3<E>, old: &State<E>, dt: f64) -> X<E> {
+pub fn residual<E: Scalar>(
+    m: &ElastoPlastic<E>,
+    x: &X<E>,
+    f: &M3<E>,
+    old: &State<E>,
+    dt: f64,
+) -> X<E> {
     let (fp_inv, alpha) = unpack(x);
     let fe = f * fp_inv;
     let tau = m.tau(&fe, old.theta);
@@ -42,7 +48,8 @@ pub fn residual<E: Scalar>(m: &ElastoPlastic<E>, x: &X<E>, f: &M3<E>, old: &Stat
     let sqrt_3_2 = c::<E>(1.5f64.sqrt());
     let flow = expm(&(s * (-dalpha * sqrt_3_2 / s_norm)));
     let r_m = fe - flow * f * old.fp_inv;
-    let phi = (s_norm * sqrt_3_2 - m.tau_y(alpha, dalpha, dt, old.theta)) / m.elastic.shear_modulus();
+    let phi =
+        (s_norm * sqrt_3_2 - m.tau_y(alpha, dalpha, dt, old.theta)) / m.elastic.shear_modulus();
     pack(&r_m, phi)
 }
 
@@ -61,9 +68,19 @@ fn residual_and_jacobian(
 }
 
 /// Solve the local problem in real arithmetic; returns (Fp⁻¹, α).
-pub fn solve(m: &ElastoPlastic<f64>, f: &M3<f64>, old: &State<f64>, dt: f64) -> Result<(M3<f64>, f64), MaterialError> {
+pub fn solve(
+    m: &ElastoPlastic<f64>,
+    f: &M3<f64>,
+    old: &State<f64>,
+    dt: f64,
+) -> Result<(M3<f64>, f64), MaterialError> {
     let x0 = pack(&old.fp_inv, old.alpha);
-    let (x, _) = local_newton::solve(|x| residual_and_jacobian(m, x, f, old, dt), x0, 9, old.alpha)?;
+    let (x, _) = local_newton::solve(
+        |x| residual_and_jacobian(m, x, f, old, dt),
+        x0,
+        9,
+        old.alpha,
+    )?;
     Ok(unpack(&x))
 }
 
@@ -80,7 +97,9 @@ pub fn implicit_step<D: Scalar>(
 ) -> Result<(M3<D>, D), MaterialError> {
     let x = pack(fp_inv, alpha);
     let (_, k) = residual_and_jacobian(&m.re(), &x, &crate::tensor::re(f), &old.re(), dt);
-    let k_inv = k.try_inverse().ok_or(MaterialError::Singular { what: "return mapping (implicit step)" })?;
+    let k_inv = k.try_inverse().ok_or(MaterialError::Singular {
+        what: "return mapping (implicit step)",
+    })?;
     let x_d: X<D> = x.map(|v| c::<D>(v));
     let r = residual(m, &x_d, f, old, dt);
     let mut out = x_d;

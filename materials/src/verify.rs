@@ -18,24 +18,48 @@ impl CaseResult {
     /// Pass if |measured − reference| ≤ tol · |reference|.
     pub fn relative(name: impl Into<String>, measured: f64, reference: f64, tol: f64) -> Self {
         let passed = (measured - reference).abs() <= tol * reference.abs() && measured.is_finite();
-        CaseResult { name: name.into(), measured, reference, tolerance: format!("rel {tol:.0e}"), passed }
+        CaseResult {
+            name: name.into(),
+            measured,
+            reference,
+            tolerance: format!("rel {tol:.0e}"),
+            passed,
+        }
     }
 
     /// Pass if |measured − reference| ≤ tol.
     pub fn absolute(name: impl Into<String>, measured: f64, reference: f64, tol: f64) -> Self {
         let passed = (measured - reference).abs() <= tol && measured.is_finite();
-        CaseResult { name: name.into(), measured, reference, tolerance: format!("abs {tol:.1e}"), passed }
+        CaseResult {
+            name: name.into(),
+            measured,
+            reference,
+            tolerance: format!("abs {tol:.1e}"),
+            passed,
+        }
     }
 
     /// Pass if measured ≤ bound (an error measure against zero).
     pub fn at_most(name: impl Into<String>, measured: f64, bound: f64) -> Self {
         let passed = measured <= bound && measured.is_finite();
-        CaseResult { name: name.into(), measured, reference: 0.0, tolerance: format!("<= {bound:.1e}"), passed }
+        CaseResult {
+            name: name.into(),
+            measured,
+            reference: 0.0,
+            tolerance: format!("<= {bound:.1e}"),
+            passed,
+        }
     }
 
     /// A yes/no check reported as 1 (true) against 1.
     pub fn holds(name: impl Into<String>, ok: bool) -> Self {
-        CaseResult { name: name.into(), measured: if ok { 1.0 } else { 0.0 }, reference: 1.0, tolerance: "holds".into(), passed: ok }
+        CaseResult {
+            name: name.into(),
+            measured: if ok { 1.0 } else { 0.0 },
+            reference: 1.0,
+            tolerance: "holds".into(),
+            passed: ok,
+        }
     }
 }
 

@@ -1,1 +1,0 @@
-//! Single-point driver (in progress).
