@@ -1,24 +1,20 @@
 //! Safeguarded Newton solver for the local return-mapping systems.
 //!
-//! Full Newton steps with a backtracking line search on ‖r‖∞, and the plastic arc length
-//! kept above its previous value: a step that would make Δα negative is shortened to
-//! halve Δα instead. This is what keeps first yield with N < 1 (infinite slope of α^N at
-//! α = 0) convergent.
+//! Full Newton steps with a backtracking line search on ‖r‖∞. The callers solve for
+//! ln Δα, which keeps Δα > 0 and removes the infinite slope of α^N at first yield.
 
 use crate::error::MaterialError;
 use nalgebra::{Const, DimMin, SMatrix, SVector};
 
 /// Converged when the scaled residual is below this.
-pub const TOL: f64 = 1e-13;
+pub const TOL: f64 = 5e-15;
 pub const MAX_ITERATIONS: usize = 60;
 
-/// Solve r(x) = 0 from `x0`. `eval` returns r and ∂r/∂x. Component `alpha_index` of x is
-/// kept ≥ `alpha_min`. Returns the root and the Jacobian there.
+/// Solve r(x) = 0 from `x0`. `eval` returns r and ∂r/∂x. Returns the root and the
+/// Jacobian there.
 pub fn solve<const N: usize>(
     mut eval: impl FnMut(&SVector<f64, N>) -> (SVector<f64, N>, SMatrix<f64, N, N>),
     x0: SVector<f64, N>,
-    alpha_index: usize,
-    alpha_min: f64,
 ) -> Result<(SVector<f64, N>, SMatrix<f64, N, N>), MaterialError>
 where
     Const<N>: DimMin<Const<N>, Output = Const<N>>,
@@ -39,10 +35,6 @@ where
             what: "return mapping",
         })?;
         let mut step = 1.0;
-        let alpha_after = x[alpha_index] + dx[alpha_index];
-        if alpha_after < alpha_min && dx[alpha_index] < 0.0 {
-            step = 0.5 * (x[alpha_index] - alpha_min) / -dx[alpha_index];
-        }
         let mut accepted = false;
         for _ in 0..12 {
             let trial = x + dx * step;

@@ -201,25 +201,26 @@ pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFile
             "missing; expected \"neo-hooke\", \"j2\" or \"johnson-cook\"",
         )
     })?;
-    let allowed_top: &[&str] =
-        match model_kind {
-            "neo-hooke" => &["name", "model", "elastic"],
-            "j2" => &["name", "model", "return_map", "elastic", "voce"],
-            "johnson-cook" => &[
-                "name",
-                "model",
-                "return_map",
-                "elastic",
-                "johnson_cook",
-                "thermal",
-            ],
-            other => return Err(r.err(
+    let allowed_top: &[&str] = match model_kind {
+        "neo-hooke" => &["name", "model", "elastic"],
+        "j2" => &["name", "model", "return_map", "elastic", "voce"],
+        "johnson-cook" => &[
+            "name",
+            "model",
+            "return_map",
+            "elastic",
+            "johnson_cook",
+            "thermal",
+        ],
+        other => {
+            return Err(r.err(
                 "model",
                 format!(
                     "unknown model \"{other}\"; expected \"neo-hooke\", \"j2\" or \"johnson-cook\""
                 ),
-            )),
-        };
+            ))
+        }
+    };
     for key in root.keys() {
         if !allowed_top.contains(&key.as_str()) {
             return Err(r.err(

@@ -141,9 +141,11 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
         }
         let model = self.re();
         let (f_re, old_re) = (re(f), old.re());
+        // Perfectly plastic estimate of Δα (radial return with 3G) as the first guess.
+        let dalpha0 = phi_trial.re() / (3.0 * model.elastic.shear_modulus());
         let (fp_inv_re, alpha_re) = match self.return_map {
-            ReturnMap::Reference => return_reference::solve(&model, &f_re, &old_re, dt)?,
-            ReturnMap::Principal => return_principal::solve(&model, &f_re, &old_re, dt)?,
+            ReturnMap::Reference => return_reference::solve(&model, &f_re, &old_re, dt, dalpha0)?,
+            ReturnMap::Principal => return_principal::solve(&model, &f_re, &old_re, dt, dalpha0)?,
         };
         let (fp_inv, alpha) = if D::NDERIV == 0 {
             (lift(&fp_inv_re), c::<D>(alpha_re))

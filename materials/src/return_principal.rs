@@ -4,7 +4,7 @@
 //! in the eigenbasis v_a of the trial be with logarithmic stretches ε_a = ½ ln λ_a²,
 //!   ε_a = ε_a^tr − √(3/2) Δα n_a,   n_a = s_a / ‖s‖,   s_a = G (e^{2ε_a} − mean e^{2ε}),
 //!   φ = √(3/2) ‖s‖ − τ_y(α_n + Δα, Δα/Δt, θ_n) = 0,
-//! 4 unknowns (ε_1..3, Δα) instead of 10. Then Fe = exp(−√(3/2) Δα N) Fe^tr with
+//! 4 unknowns (ε_1..3, ln Δα) instead of 10 (ln Δα as in `return_reference`). Then Fe = exp(−√(3/2) Δα N) Fe^tr with
 //! exp(−√(3/2) Δα N) = Σ_a exp(−√(3/2) Δα n_a) v_a v_aᵀ and Fp⁻¹ = F⁻¹ Fe.
 //! The volumetric part ln J^e is unchanged (tr N = 0), so det Fp = 1 holds exactly.
 
@@ -30,7 +30,7 @@ fn residual<E: Scalar>(
     let s = [(b[0] - mean) * g, (b[1] - mean) * g, (b[2] - mean) * g];
     let s_norm = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
     let sqrt_3_2 = c::<E>(1.5f64.sqrt());
-    let dalpha = y[3];
+    let dalpha = y[3].exp();
     let mut r = SVector::<E, 4>::from_element(c(0.0));
     for a in 0..3 {
         r[a] = y[a] - c::<E>(eps_trial[a]) + sqrt_3_2 * dalpha * s[a] / s_norm;
@@ -40,26 +40,26 @@ fn residual<E: Scalar>(
     r
 }
 
-/// Solve the local problem in real arithmetic; returns (Fp⁻¹, α).
+/// Solve the local problem in real arithmetic from the first guess `dalpha0` > 0;
+/// returns (Fp⁻¹, α).
 pub fn solve(
     m: &ElastoPlastic<f64>,
     f: &M3<f64>,
     old: &State<f64>,
     dt: f64,
+    dalpha0: f64,
 ) -> Result<(M3<f64>, f64), MaterialError> {
     let fe_trial = f * old.fp_inv;
     let be_trial = fe_trial * fe_trial.transpose();
     let eigen = SymmetricEigen::new(be_trial);
     let eps_trial = eigen.eigenvalues.map(|l2| 0.5 * l2.ln());
     let m_d: ElastoPlastic<DualSVec64<4>> = m.lift();
-    let y0 = SVector::<f64, 4>::new(eps_trial[0], eps_trial[1], eps_trial[2], 0.0);
+    let y0 = SVector::<f64, 4>::new(eps_trial[0], eps_trial[1], eps_trial[2], dalpha0.ln());
     let (y, _) = local_newton::solve(
         |y| jacobian(|yd| residual(&m_d, &yd, &eps_trial, old, dt), y),
         y0,
-        3,
-        0.0,
     )?;
-    let dalpha = y[3];
+    let dalpha = y[3].exp();
     // exp(−√(3/2) Δα N) = diag(λ_a / λ_a^tr) in the eigenbasis.
     let ratio = Vector3::new(
         y[0] - eps_trial[0],

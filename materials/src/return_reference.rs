@@ -2,7 +2,11 @@
 //! the 9 entries of Fp⁻¹ and α (10 unknowns) by Newton with the Jacobian from num-dual,
 //! using the closed matrix exponential of `expm` (exact at Δα = 0).
 //!
-//! r(x) = [ F Fp⁻¹ − exp(−(α − α_n) √(3/2) N) F Fp_n⁻¹ ;  φ/G ],  x = [Fp⁻¹ (row-major), α].
+//! r(x) = [ F Fp⁻¹ − exp(−Δα √(3/2) N) F Fp_n⁻¹ ;  φ/G ],  x = [Fp⁻¹ (row-major), ln Δα].
+//!
+//! The plastic increment enters as u = ln Δα: the JC rate term 1 + C ln(Δα/(Δt α̇0)) is
+//! then linear in u and α^N = (α_n + e^u)^N has no infinite slope at first yield, so
+//! Newton converges from the perfectly-plastic estimate without special cases.
 
 use crate::error::MaterialError;
 use crate::expm::expm;
@@ -16,14 +20,14 @@ use num_dual::{jacobian, DualSVec64};
 
 type X<E> = SVector<E, 10>;
 
-fn pack<E: Scalar>(fp_inv: &M3<E>, alpha: E) -> X<E> {
+fn pack<E: Scalar>(fp_inv: &M3<E>, last: E) -> X<E> {
     let mut x = X::from_element(c(0.0));
     for i in 0..3 {
         for j in 0..3 {
             x[3 * i + j] = fp_inv[(i, j)];
         }
     }
-    x[9] = alpha;
+    x[9] = last;
     x
 }
 
@@ -39,17 +43,17 @@ pub fn residual<E: Scalar>(
     old: &State<E>,
     dt: f64,
 ) -> X<E> {
-    let (fp_inv, alpha) = unpack(x);
+    let (fp_inv, ln_dalpha) = unpack(x);
+    let dalpha = ln_dalpha.exp();
     let fe = f * fp_inv;
     let tau = m.tau(&fe, old.theta);
     let s = dev(&tau);
     let s_norm = norm(&s);
-    let dalpha = alpha - old.alpha;
     let sqrt_3_2 = c::<E>(1.5f64.sqrt());
     let flow = expm(&(s * (-dalpha * sqrt_3_2 / s_norm)));
     let r_m = fe - flow * f * old.fp_inv;
-    let phi =
-        (s_norm * sqrt_3_2 - m.tau_y(alpha, dalpha, dt, old.theta)) / m.elastic.shear_modulus();
+    let phi = (s_norm * sqrt_3_2 - m.tau_y(old.alpha + dalpha, dalpha, dt, old.theta))
+        / m.elastic.shear_modulus();
     pack(&r_m, phi)
 }
 
@@ -67,21 +71,19 @@ fn residual_and_jacobian(
     jacobian(|xd| residual(&m_d, &xd, &f_d, &old_d, dt), x)
 }
 
-/// Solve the local problem in real arithmetic; returns (Fp⁻¹, α).
+/// Solve the local problem in real arithmetic from the first guess `dalpha0` > 0;
+/// returns (Fp⁻¹, α).
 pub fn solve(
     m: &ElastoPlastic<f64>,
     f: &M3<f64>,
     old: &State<f64>,
     dt: f64,
+    dalpha0: f64,
 ) -> Result<(M3<f64>, f64), MaterialError> {
-    let x0 = pack(&old.fp_inv, old.alpha);
-    let (x, _) = local_newton::solve(
-        |x| residual_and_jacobian(m, x, f, old, dt),
-        x0,
-        9,
-        old.alpha,
-    )?;
-    Ok(unpack(&x))
+    let x0 = pack(&old.fp_inv, dalpha0.ln());
+    let (x, _) = local_newton::solve(|x| residual_and_jacobian(m, x, f, old, dt), x0)?;
+    let (fp_inv, ln_dalpha) = unpack(&x);
+    Ok((fp_inv, old.alpha + ln_dalpha.exp()))
 }
 
 /// One Newton step in the scalar type `D` from the converged real solution: the real
@@ -95,7 +97,7 @@ pub fn implicit_step<D: Scalar>(
     fp_inv: &M3<f64>,
     alpha: f64,
 ) -> Result<(M3<D>, D), MaterialError> {
-    let x = pack(fp_inv, alpha);
+    let x = pack(fp_inv, (alpha - old.alpha.re()).ln());
     let (_, k) = residual_and_jacobian(&m.re(), &x, &crate::tensor::re(f), &old.re(), dt);
     let k_inv = k.try_inverse().ok_or(MaterialError::Singular {
         what: "return mapping (implicit step)",
@@ -108,5 +110,6 @@ pub fn implicit_step<D: Scalar>(
             out[i] -= r[j] * k_inv[(i, j)];
         }
     }
-    Ok(unpack(&out))
+    let (fp_inv, ln_dalpha) = unpack(&out);
+    Ok((fp_inv, old.alpha + ln_dalpha.exp()))
 }

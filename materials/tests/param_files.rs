@@ -1,0 +1,104 @@
+//! Parameter files: every shipped set loads; bad fields are errors naming file, field
+//! and allowed range.
+
+use materials::param_file::parse_material;
+use materials::{load_material, Model};
+use std::path::Path;
+
+fn data_dir() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/materials")
+}
+
+#[test]
+fn every_shipped_set_loads_with_its_table_values() {
+    let expect = [
+        ("aisi_4340.toml", "A", 792e6),
+        ("42crmo4_qt660.toml", "B", 1531e6),
+        ("al7075_t6.toml", "N", 0.71),
+        ("ofhc_copper.toml", "C", 0.025),
+        ("aisi_52100.toml", "E", 200e9),
+        ("al6061_t6.toml", "tau0", 300e6),
+    ];
+    for (file, name, value) in expect {
+        let m = load_material(data_dir().join(file)).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(m.model.param(name), Some(value), "{file}: {name}");
+    }
+}
+
+const GOOD: &str = r#"
+name = "test"
+model = "johnson-cook"
+[elastic]
+E = 200e9
+nu = 0.3
+rho = 7800.0
+[johnson_cook]
+A = 800e6
+B = 500e6
+N = 0.3
+C = 0.01
+M = 1.0
+alpha_dot0 = 1.0
+theta_m = 1700.0
+[thermal]
+theta0 = 293.15
+c_theta = 460.0
+alpha_sigma = 1.2e-5
+gamma_tq = 0.9
+"#;
+
+fn error_of(text: &str) -> String {
+    parse_material(text, Path::new("bad.toml"))
+        .unwrap_err()
+        .to_string()
+}
+
+#[test]
+fn bad_fields_are_named_with_the_allowed_range() {
+    assert!(parse_material(GOOD, Path::new("good.toml")).is_ok());
+    let cases = [
+        (
+            GOOD.replace("E = 200e9", "E = -200e9"),
+            "elastic.E",
+            "(0, inf)",
+        ),
+        (
+            GOOD.replace("nu = 0.3", "nu = 0.5"),
+            "elastic.nu",
+            "(-1, 0.5)",
+        ),
+        (
+            GOOD.replace("theta_m = 1700.0", "theta_m = 200.0"),
+            "johnson_cook.theta_m",
+            "(293.15, inf)",
+        ),
+        (
+            GOOD.replace("gamma_tq = 0.9", "gamma_tq = 1.5"),
+            "thermal.gamma_tq",
+            "[0, 1]",
+        ),
+        (
+            GOOD.replace("C = 0.01", "C = 0.01\nD = 3.0"),
+            "johnson_cook.D",
+            "unknown key",
+        ),
+        (GOOD.replace("M = 1.0\n", ""), "johnson_cook.M", "missing"),
+        (
+            GOOD.replace("rho = 7800.0", "rho = \"heavy\""),
+            "elastic.rho",
+            "expected a number",
+        ),
+        (
+            GOOD.replace("johnson-cook", "drucker-prager"),
+            "model",
+            "unknown model",
+        ),
+    ];
+    for (text, field, what) in cases {
+        let e = error_of(&text);
+        assert!(
+            e.starts_with("bad.toml: field `") && e.contains(field) && e.contains(what),
+            "got: {e}"
+        );
+    }
+}
