@@ -2,3 +2,7 @@
 //! subcommands (one module per subcommand in `cli`).
 
 pub mod cli;
+pub mod experiment;
+
+pub use experiment::{load_experiment, Experiment, ExperimentError};
+pub mod fit;

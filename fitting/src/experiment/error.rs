@@ -1,0 +1,116 @@
+//! Errors of reading an experiment: each names the file, the line, and the column (CSV
+//! column name, or TOML key and character column) and says what was expected.
+
+use std::fmt;
+use std::path::PathBuf;
+use thiserror::Error;
+
+/// A place in a text file: `file:line:column`, 1-based.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Location {
+    pub file: PathBuf,
+    pub line: usize,
+    pub column: usize,
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}:{}", self.file.display(), self.line, self.column)
+    }
+}
+
+#[derive(Debug, Error)]
+pub enum ExperimentError {
+    #[error("{}: cannot read: {source}", file.display())]
+    Io {
+        file: PathBuf,
+        source: std::io::Error,
+    },
+    /// TOML syntax, a missing or unknown key, or a value of the wrong type.
+    #[error("{at}: {message}")]
+    Toml { at: Location, message: String },
+    #[error("{at}: `{key}`: kind \"{found}\", expected \"{expected}\"")]
+    WrongKind {
+        at: Location,
+        key: String,
+        found: String,
+        expected: String,
+    },
+    #[error("{at}: `{key}`: unknown unit \"{unit}\", expected one of {expected}")]
+    UnknownUnit {
+        at: Location,
+        key: String,
+        unit: String,
+        expected: String,
+    },
+    #[error("{at}: `{key}`: {problem}")]
+    InvalidValue {
+        at: Location,
+        key: String,
+        problem: String,
+    },
+    #[error("{at}: `{key}` = {value} lies outside the data, which spans {data_min} .. {data_max}")]
+    WindowOutsideData {
+        at: Location,
+        key: String,
+        value: f64,
+        data_min: f64,
+        data_max: f64,
+    },
+    #[error("{}:{line}: no column \"{name}\" (named by {named_by}); the header has: {available}", file.display())]
+    MissingColumn {
+        file: PathBuf,
+        line: usize,
+        name: String,
+        named_by: Location,
+        available: String,
+    },
+    #[error("{}:{line}: column {column} \"{name}\" appears twice in the header", file.display())]
+    DuplicateColumn {
+        file: PathBuf,
+        line: usize,
+        column: usize,
+        name: String,
+    },
+    #[error("{}:{line}: {found} fields, expected {expected} as in the header", file.display())]
+    FieldCount {
+        file: PathBuf,
+        line: usize,
+        found: usize,
+        expected: usize,
+    },
+    #[error("{}:{line}: column {column} \"{name}\": expected a number, found \"{text}\"", file.display())]
+    BadNumber {
+        file: PathBuf,
+        line: usize,
+        column: usize,
+        name: String,
+        text: String,
+    },
+    #[error("{}:{line}: column {column} \"{name}\": {value} is not a finite number", file.display())]
+    NotFinite {
+        file: PathBuf,
+        line: usize,
+        column: usize,
+        name: String,
+        value: f64,
+    },
+    #[error(
+        "{}:{line}: column {column} \"{name}\": time {value} s is not after the previous row's {previous} s (values in seconds); time must increase strictly",
+        file.display()
+    )]
+    NonMonotonicTime {
+        file: PathBuf,
+        line: usize,
+        column: usize,
+        name: String,
+        previous: f64,
+        value: f64,
+    },
+    #[error("{}: {found} data rows, at least {needed} needed", file.display())]
+    TooFewRows {
+        file: PathBuf,
+        found: usize,
+        needed: usize,
+    },
+}

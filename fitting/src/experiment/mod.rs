@@ -1,0 +1,51 @@
+//! Experiment files: a CSV of measured samples plus a TOML that states what they are
+//! (`kind`, the unit of each column, temperature, rate, geometry, valid window). Values
+//! are converted to SI when read; bad input is an error naming file, line and column.
+//!
+//! Kinds: `tensile` ([`TensileExperiment`]) and `shpb` ([`ShpbExperiment`]). The CSV path
+//! in the TOML (`data = "..."`) is relative to the TOML's folder.
+
+mod error;
+mod shpb;
+mod sidecar;
+mod table;
+mod tensile;
+pub mod units;
+
+pub use error::{ExperimentError, Location};
+pub use shpb::{Bar, ShpbExperiment, Specimen};
+pub use tensile::TensileExperiment;
+
+use std::path::Path;
+
+/// Any experiment file.
+#[derive(Debug, Clone)]
+pub enum Experiment {
+    Tensile(TensileExperiment),
+    Shpb(ShpbExperiment),
+}
+
+impl Experiment {
+    pub fn name(&self) -> &str {
+        match self {
+            Experiment::Tensile(e) => &e.name,
+            Experiment::Shpb(e) => &e.name,
+        }
+    }
+}
+
+/// Read the experiment TOML at `toml_file` (its `kind` decides the type) and its CSV.
+pub fn load_experiment(toml_file: &Path) -> Result<Experiment, ExperimentError> {
+    let sidecar = sidecar::Sidecar::read(toml_file)?;
+    let kind: sidecar::KindOnly = sidecar.parse()?;
+    match kind.kind.get_ref().as_str() {
+        "tensile" => TensileExperiment::load(toml_file).map(Experiment::Tensile),
+        "shpb" => ShpbExperiment::load(toml_file).map(Experiment::Shpb),
+        other => Err(ExperimentError::WrongKind {
+            at: sidecar.at(kind.kind.span()),
+            key: "kind".into(),
+            found: other.to_string(),
+            expected: "tensile\" or \"shpb".into(),
+        }),
+    }
+}

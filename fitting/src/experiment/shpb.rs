@@ -1,0 +1,322 @@
+//! Split-Hopkinson-Pressure-Bar experiments: raw bar strains (incident gauge with the
+//! incident and reflected pulses, transmitted gauge) plus bar and specimen metadata.
+//!
+//! ```toml
+//! kind = "shpb"
+//! name = "945 steel, test 01"          # optional, default: the TOML's file stem
+//! data = "path/relative/to/this.csv"
+//! temperature = "293.15 K"
+//! [columns]
+//! time = { name = "time_s", unit = "s" }
+//! incident = { name = "incident_microstrain", unit = "microstrain" }
+//! transmitted = { name = "transmitted_microstrain", unit = "microstrain" }
+//! # a column in volts names its bridge; strain = 4 U / (active_arms · gauge_factor · excitation · gain)
+//! # incident = { name = "ch1", unit = "V", gauge_factor = 2.1, excitation = "10 V", gain = 100, active_arms = 2 }
+//! [bar]
+//! elastic_modulus = "210 GPa"
+//! density = "7800 kg/m^3"              # or wave_speed = "5189 m/s" (c0 = sqrt(E/rho))
+//! diameter = "20 mm"
+//! incident_gauge_to_specimen = "1020 mm"
+//! transmitted_gauge_to_specimen = "770 mm"
+//! [specimen]
+//! diameter = "8 mm"
+//! length = "4 mm"
+//! ```
+//! Strains are stored as recorded (compression negative), in strain [-].
+
+use super::error::ExperimentError;
+use super::sidecar::{ColumnSpec, Sidecar};
+use super::table::CsvTable;
+use super::units::Dimension;
+use serde::Deserialize;
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ShpbFile {
+    kind: Spanned<String>,
+    name: Option<String>,
+    data: Spanned<String>,
+    temperature: Spanned<String>,
+    columns: ShpbColumns,
+    bar: BarSpec,
+    specimen: SpecimenSpec,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ShpbColumns {
+    time: ColumnSpec,
+    incident: GaugeColumnSpec,
+    transmitted: GaugeColumnSpec,
+}
+
+/// A strain-gauge column: in a strain unit, or in volts with its bridge.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GaugeColumnSpec {
+    name: Spanned<String>,
+    unit: Spanned<String>,
+    gauge_factor: Option<Spanned<f64>>,
+    excitation: Option<Spanned<String>>,
+    gain: Option<Spanned<f64>>,
+    active_arms: Option<Spanned<u32>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BarSpec {
+    elastic_modulus: Spanned<String>,
+    density: Option<Spanned<String>>,
+    wave_speed: Option<Spanned<String>>,
+    diameter: Spanned<String>,
+    incident_gauge_to_specimen: Spanned<String>,
+    transmitted_gauge_to_specimen: Spanned<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SpecimenSpec {
+    diameter: Spanned<String>,
+    length: Spanned<String>,
+}
+
+/// The incident and transmitted bars (same material and diameter).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bar {
+    /// Young's modulus E_b [Pa].
+    pub elastic_modulus_pa: f64,
+    /// Density ρ_b [kg/m³].
+    pub density_kg_m3: f64,
+    /// Bar diameter [m].
+    pub diameter_m: f64,
+    /// Distance from the incident-bar gauge to the specimen face [m].
+    pub incident_gauge_to_specimen_m: f64,
+    /// Distance from the transmitted-bar gauge to the specimen face [m].
+    pub transmitted_gauge_to_specimen_m: f64,
+}
+
+impl Bar {
+    /// Bar wave speed c0 = √(E_b/ρ_b) [m/s].
+    pub fn wave_speed_m_per_s(&self) -> f64 {
+        (self.elastic_modulus_pa / self.density_kg_m3).sqrt()
+    }
+
+    /// Cross-section A_b = π d²/4 [m²].
+    pub fn area_m2(&self) -> f64 {
+        PI * self.diameter_m * self.diameter_m / 4.0
+    }
+}
+
+/// The cylindrical specimen, undeformed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Specimen {
+    /// Diameter [m].
+    pub diameter_m: f64,
+    /// Length L_s between the bar faces [m].
+    pub length_m: f64,
+}
+
+impl Specimen {
+    /// Cross-section A_s = π d²/4 [m²].
+    pub fn area_m2(&self) -> f64 {
+        PI * self.diameter_m * self.diameter_m / 4.0
+    }
+}
+
+/// An SHPB record in SI units, strains as recorded (compression negative).
+#[derive(Debug, Clone)]
+pub struct ShpbExperiment {
+    pub name: String,
+    /// The CSV the samples were read from.
+    pub data_file: PathBuf,
+    pub bar: Bar,
+    pub specimen: Specimen,
+    /// Test temperature [K].
+    pub temperature_k: f64,
+    /// Sample times [s], strictly increasing.
+    pub time_s: Vec<f64>,
+    /// Incident-bar gauge strain [-] (incident and reflected pulses).
+    pub incident: Vec<f64>,
+    /// Transmitted-bar gauge strain [-].
+    pub transmitted: Vec<f64>,
+}
+
+impl ShpbExperiment {
+    /// Read an SHPB experiment TOML and the CSV it names.
+    pub fn load(toml_file: &Path) -> Result<ShpbExperiment, ExperimentError> {
+        let sidecar = Sidecar::read(toml_file)?;
+        let spec: ShpbFile = sidecar.parse()?;
+        if spec.kind.get_ref() != "shpb" {
+            return Err(ExperimentError::WrongKind {
+                at: sidecar.at(spec.kind.span()),
+                key: "kind".into(),
+                found: spec.kind.get_ref().clone(),
+                expected: "shpb".into(),
+            });
+        }
+        let temperature_k =
+            sidecar.positive("temperature", &spec.temperature, Dimension::Temperature)?;
+        let b = &spec.bar;
+        let elastic_modulus_pa =
+            sidecar.positive("bar.elastic_modulus", &b.elastic_modulus, Dimension::Stress)?;
+        let density_kg_m3 = match (&b.density, &b.wave_speed) {
+            (Some(rho), None) => sidecar.positive("bar.density", rho, Dimension::Density)?,
+            (None, Some(c0)) => {
+                let c0 = sidecar.positive("bar.wave_speed", c0, Dimension::Velocity)?;
+                elastic_modulus_pa / (c0 * c0)
+            }
+            _ => {
+                return Err(sidecar.invalid(
+                    "bar.elastic_modulus",
+                    b.elastic_modulus.span(),
+                    "the bar needs exactly one of `density` and `wave_speed`",
+                ))
+            }
+        };
+        let bar = Bar {
+            elastic_modulus_pa,
+            density_kg_m3,
+            diameter_m: sidecar.positive("bar.diameter", &b.diameter, Dimension::Length)?,
+            incident_gauge_to_specimen_m: sidecar.positive(
+                "bar.incident_gauge_to_specimen",
+                &b.incident_gauge_to_specimen,
+                Dimension::Length,
+            )?,
+            transmitted_gauge_to_specimen_m: sidecar.positive(
+                "bar.transmitted_gauge_to_specimen",
+                &b.transmitted_gauge_to_specimen,
+                Dimension::Length,
+            )?,
+        };
+        let specimen = Specimen {
+            diameter_m: sidecar.positive(
+                "specimen.diameter",
+                &spec.specimen.diameter,
+                Dimension::Length,
+            )?,
+            length_m: sidecar.positive(
+                "specimen.length",
+                &spec.specimen.length,
+                Dimension::Length,
+            )?,
+        };
+
+        let data_file = sidecar.relative_path(spec.data.get_ref());
+        let table = CsvTable::read(&data_file)?;
+        if table.len() < 2 {
+            return Err(ExperimentError::TooFewRows {
+                file: data_file,
+                found: table.len(),
+                needed: 2,
+            });
+        }
+        let time_s = sidecar.column(&table, "columns.time", &spec.columns.time, Dimension::Time)?;
+        sidecar.check_time_increases(&table, &spec.columns.time, &time_s)?;
+        let incident = gauge_strain(&sidecar, &table, "columns.incident", &spec.columns.incident)?;
+        let transmitted = gauge_strain(
+            &sidecar,
+            &table,
+            "columns.transmitted",
+            &spec.columns.transmitted,
+        )?;
+        let name = spec.name.unwrap_or_else(|| {
+            toml_file
+                .file_stem()
+                .map_or_else(|| "shpb".into(), |s| s.to_string_lossy().into_owned())
+        });
+        Ok(ShpbExperiment {
+            name,
+            data_file,
+            bar,
+            specimen,
+            temperature_k,
+            time_s,
+            incident,
+            transmitted,
+        })
+    }
+}
+
+/// Gauge strain [-] from a strain column, or from a bridge voltage U:
+/// ε = 4 U / (n_active · k · U_ex · gain) (small-signal Wheatstone bridge).
+fn gauge_strain(
+    sidecar: &Sidecar,
+    table: &CsvTable,
+    key: &str,
+    spec: &GaugeColumnSpec,
+) -> Result<Vec<f64>, ExperimentError> {
+    let column = ColumnSpec {
+        name: spec.name.clone(),
+        unit: spec.unit.clone(),
+    };
+    let bridge_keys = [
+        spec.gauge_factor
+            .as_ref()
+            .map(|v| ("gauge_factor", v.span())),
+        spec.excitation.as_ref().map(|v| ("excitation", v.span())),
+        spec.gain.as_ref().map(|v| ("gain", v.span())),
+        spec.active_arms.as_ref().map(|v| ("active_arms", v.span())),
+    ];
+    if Dimension::Voltage.to_si(spec.unit.get_ref()).is_none() {
+        if let Some((bridge_key, span)) = bridge_keys.into_iter().flatten().next() {
+            return Err(sidecar.invalid(
+                &format!("{key}.{bridge_key}"),
+                span,
+                "bridge settings belong to a column in volts (unit \"V\" or \"mV\")",
+            ));
+        }
+        return sidecar.column(table, key, &column, Dimension::Strain);
+    }
+    let missing = |what: &str| {
+        sidecar.invalid(
+            &format!("{key}.unit"),
+            spec.unit.span(),
+            format!("a column in volts needs `{what}` (gauge_factor, excitation, active_arms; gain defaults to 1)"),
+        )
+    };
+    let positive = |name: &str, v: &Spanned<f64>| {
+        if *v.get_ref() > 0.0 && v.get_ref().is_finite() {
+            Ok(*v.get_ref())
+        } else {
+            Err(sidecar.invalid(
+                &format!("{key}.{name}"),
+                v.span(),
+                "must be a positive number",
+            ))
+        }
+    };
+    let gauge_factor = positive(
+        "gauge_factor",
+        spec.gauge_factor
+            .as_ref()
+            .ok_or_else(|| missing("gauge_factor"))?,
+    )?;
+    let excitation = sidecar.positive(
+        &format!("{key}.excitation"),
+        spec.excitation
+            .as_ref()
+            .ok_or_else(|| missing("excitation"))?,
+        Dimension::Voltage,
+    )?;
+    let gain = spec
+        .gain
+        .as_ref()
+        .map_or(Ok(1.0), |g| positive("gain", g))?;
+    let arms = spec
+        .active_arms
+        .as_ref()
+        .ok_or_else(|| missing("active_arms"))?;
+    if ![1, 2, 4].contains(arms.get_ref()) {
+        return Err(sidecar.invalid(
+            &format!("{key}.active_arms"),
+            arms.span(),
+            "expected 1, 2 or 4",
+        ));
+    }
+    let volts = sidecar.column(table, key, &column, Dimension::Voltage)?;
+    let per_volt = 4.0 / (f64::from(*arms.get_ref()) * gauge_factor * excitation * gain);
+    Ok(volts.into_iter().map(|u| u * per_volt).collect())
+}

@@ -1,0 +1,177 @@
+//! The experiment TOML ("sidecar" of a CSV file): parsing with serde, locations of keys
+//! for error messages, quantity strings and column specifications.
+
+use super::error::{ExperimentError, Location};
+use super::table::CsvTable;
+use super::units::{parse_quantity, Dimension, QuantityProblem};
+use serde::de::DeserializeOwned;
+use serde::Deserialize;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+/// A CSV column and the unit its values are in: `{ name = "time_s", unit = "s" }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ColumnSpec {
+    pub name: Spanned<String>,
+    pub unit: Spanned<String>,
+}
+
+/// The text of an experiment TOML file.
+pub(crate) struct Sidecar {
+    pub file: PathBuf,
+    text: String,
+}
+
+impl Sidecar {
+    pub fn read(file: &Path) -> Result<Sidecar, ExperimentError> {
+        let text = std::fs::read_to_string(file).map_err(|source| ExperimentError::Io {
+            file: file.to_path_buf(),
+            source,
+        })?;
+        Ok(Sidecar {
+            file: file.to_path_buf(),
+            text,
+        })
+    }
+
+    /// 1-based line and column of byte offset `span.start`.
+    pub fn at(&self, span: Range<usize>) -> Location {
+        let before = &self.text[..span.start.min(self.text.len())];
+        let line = before.matches('\n').count() + 1;
+        let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+        Location {
+            file: self.file.clone(),
+            line,
+            column,
+        }
+    }
+
+    pub fn parse<T: DeserializeOwned>(&self) -> Result<T, ExperimentError> {
+        toml::from_str(&self.text).map_err(|e| ExperimentError::Toml {
+            at: self.at(e.span().unwrap_or(0..0)),
+            message: e.message().trim().to_string(),
+        })
+    }
+
+    /// A path written in the TOML, relative to the TOML's folder.
+    pub fn relative_path(&self, path: &str) -> PathBuf {
+        self.file.parent().unwrap_or(Path::new(".")).join(path)
+    }
+
+    pub fn invalid(
+        &self,
+        key: &str,
+        span: Range<usize>,
+        problem: impl Into<String>,
+    ) -> ExperimentError {
+        ExperimentError::InvalidValue {
+            at: self.at(span),
+            key: key.to_string(),
+            problem: problem.into(),
+        }
+    }
+
+    /// A quantity string `"<number> <unit>"` in SI.
+    pub fn quantity(
+        &self,
+        key: &str,
+        value: &Spanned<String>,
+        dimension: Dimension,
+    ) -> Result<f64, ExperimentError> {
+        parse_quantity(value.get_ref(), dimension).map_err(|problem| match problem {
+            QuantityProblem::Malformed => self.invalid(
+                key,
+                value.span(),
+                format!(
+                    "expected \"<number> <unit>\" with a finite number and one of {}, found \"{}\"",
+                    dimension.accepted(),
+                    value.get_ref()
+                ),
+            ),
+            QuantityProblem::UnknownUnit(unit) => {
+                self.unknown_unit(key, value.span(), &unit, dimension)
+            }
+        })
+    }
+
+    /// A quantity that must be > 0.
+    pub fn positive(
+        &self,
+        key: &str,
+        value: &Spanned<String>,
+        dimension: Dimension,
+    ) -> Result<f64, ExperimentError> {
+        let x = self.quantity(key, value, dimension)?;
+        if x > 0.0 {
+            Ok(x)
+        } else {
+            Err(self.invalid(
+                key,
+                value.span(),
+                format!("must be positive, found \"{}\"", value.get_ref()),
+            ))
+        }
+    }
+
+    fn unknown_unit(
+        &self,
+        key: &str,
+        span: Range<usize>,
+        unit: &str,
+        dimension: Dimension,
+    ) -> ExperimentError {
+        ExperimentError::UnknownUnit {
+            at: self.at(span),
+            key: key.to_string(),
+            unit: unit.to_string(),
+            expected: dimension.accepted(),
+        }
+    }
+
+    /// Column `spec` of `table`, converted to SI.
+    pub fn column(
+        &self,
+        table: &CsvTable,
+        key: &str,
+        spec: &ColumnSpec,
+        dimension: Dimension,
+    ) -> Result<Vec<f64>, ExperimentError> {
+        let unit_key = format!("{key}.unit");
+        let conversion = dimension.to_si(spec.unit.get_ref()).ok_or_else(|| {
+            self.unknown_unit(&unit_key, spec.unit.span(), spec.unit.get_ref(), dimension)
+        })?;
+        let values = table.column(spec.name.get_ref(), &self.at(spec.name.span()))?;
+        Ok(values.into_iter().map(|v| conversion.apply(v)).collect())
+    }
+
+    /// Check that `time` (from column `spec` of `table`) increases strictly.
+    pub fn check_time_increases(
+        &self,
+        table: &CsvTable,
+        spec: &ColumnSpec,
+        time: &[f64],
+    ) -> Result<(), ExperimentError> {
+        for i in 1..time.len() {
+            if time[i] <= time[i - 1] {
+                let name = spec.name.get_ref().clone();
+                return Err(ExperimentError::NonMonotonicTime {
+                    file: table.file.clone(),
+                    line: table.line_of(i),
+                    column: table.position(&name).unwrap_or(0),
+                    name,
+                    previous: time[i - 1],
+                    value: time[i],
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// First pass over any experiment TOML: only its `kind`.
+#[derive(Deserialize)]
+pub(crate) struct KindOnly {
+    pub kind: Spanned<String>,
+}

@@ -1,0 +1,255 @@
+//! Experiment files: unit conversion against hand-computed SI values, and one test per
+//! error kind checking that the message names the file, line and column.
+
+use fitting::experiment::{
+    load_experiment, Experiment, ExperimentError, ShpbExperiment, TensileExperiment,
+};
+use std::path::{Path, PathBuf};
+
+/// Write `files` (name, text) into a fresh folder and return it.
+fn folder(test: &str, files: &[(&str, &str)]) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("mpw-experiment-{}-{test}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    dir
+}
+
+const TENSILE_CSV: &str =
+    "# a comment\ntime_ms,strain_pct,force_kn\n0,0,0\n10,1,10\n20,2,12\n30,3,11\n";
+
+fn tensile_toml(columns: &str, extra: &str) -> String {
+    format!(
+        "kind = \"tensile\"\ndata = \"t.csv\"\ntemperature = \"20 degC\"\nnominal_strain_rate = \"1 1/s\"\n\
+         [columns]\n{columns}\n[geometry]\ndiameter = \"10 mm\"\n{extra}"
+    )
+}
+
+const TENSILE_COLUMNS: &str = "time = { name = \"time_ms\", unit = \"ms\" }\n\
+     strain = { name = \"strain_pct\", unit = \"%\" }\n\
+     force = { name = \"force_kn\", unit = \"kN\" }";
+
+fn load_tensile(test: &str, toml: &str) -> Result<TensileExperiment, ExperimentError> {
+    let dir = folder(test, &[("t.csv", TENSILE_CSV), ("t.toml", toml)]);
+    TensileExperiment::load(&dir.join("t.toml"))
+}
+
+#[test]
+fn tensile_force_and_units_convert_to_si_and_cut_at_max_stress() {
+    let e = load_tensile("si", &tensile_toml(TENSILE_COLUMNS, "")).unwrap();
+    let area = std::f64::consts::PI * 0.01 * 0.01 / 4.0;
+    assert_eq!(e.time_s, vec![0.0, 0.01, 0.02, 0.03]);
+    assert_eq!(e.eng_strain, vec![0.0, 0.01, 0.02, 0.03]);
+    let expected = 12e3 / area;
+    assert!((e.eng_stress_pa[2] - expected).abs() <= 1e-12 * expected);
+    assert!((e.temperature_k - 293.15).abs() < 1e-12);
+    // Maximum engineering stress (necking) at sample 2: samples 0..=2 are used.
+    assert_eq!(e.used_range(), 0..3);
+}
+
+#[test]
+fn window_outside_data_names_the_key() {
+    let toml = tensile_toml(TENSILE_COLUMNS, "[window]\nstrain_max = 0.5\n");
+    let e = load_tensile("window", &toml).unwrap_err();
+    let msg = e.to_string();
+    assert!(
+        matches!(&e, ExperimentError::WindowOutsideData { at, key, .. } if at.line == 12 && key == "window.strain_max"),
+        "{msg}"
+    );
+    assert!(
+        msg.contains("t.toml:12:14") && msg.contains("0 .. 0.03"),
+        "{msg}"
+    );
+    // Inside the data it restricts the used samples.
+    let toml = tensile_toml(
+        TENSILE_COLUMNS,
+        "[window]\ntime_min = \"10 ms\"\nup_to_max_stress = false\n",
+    );
+    assert_eq!(load_tensile("window-ok", &toml).unwrap().used_range(), 1..4);
+}
+
+#[test]
+fn unknown_unit_names_key_line_and_accepted_units() {
+    let columns = TENSILE_COLUMNS.replace("unit = \"kN\"", "unit = \"tonnes\"");
+    let e = load_tensile("unit", &tensile_toml(&columns, "")).unwrap_err();
+    let msg = e.to_string();
+    assert!(
+        matches!(&e, ExperimentError::UnknownUnit { at, key, unit, .. }
+            if at.line == 8 && key == "columns.force.unit" && unit == "tonnes"),
+        "{msg}"
+    );
+    assert!(msg.contains("\"kN\""), "{msg}");
+    // A quantity string with an unknown unit.
+    let toml = tensile_toml(TENSILE_COLUMNS, "").replace("\"10 mm\"", "\"10 furlong\"");
+    let e = load_tensile("unit-q", &toml).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::UnknownUnit { at, .. } if at.line == 10),
+        "{e}"
+    );
+}
+
+#[test]
+fn missing_and_unknown_toml_keys_are_located() {
+    let toml = tensile_toml(TENSILE_COLUMNS, "").replace("temperature = \"20 degC\"\n", "");
+    let e = load_tensile("missing-key", &toml).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::Toml { message, .. } if message.contains("temperature")),
+        "{e}"
+    );
+    assert!(e.to_string().contains("t.toml:1:1"), "{e}");
+    let toml = tensile_toml(TENSILE_COLUMNS, "colour = \"red\"\n");
+    let e = load_tensile("unknown-key", &toml).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::Toml { at, message } if at.line == 11 && message.contains("colour")),
+        "{e}"
+    );
+}
+
+#[test]
+fn missing_csv_column_names_csv_header_and_toml_key() {
+    let columns = TENSILE_COLUMNS.replace("force_kn", "load_kn");
+    let e = load_tensile("column", &tensile_toml(&columns, "")).unwrap_err();
+    let msg = e.to_string();
+    assert!(
+        matches!(e, ExperimentError::MissingColumn { line: 2, .. }),
+        "{msg}"
+    );
+    assert!(
+        msg.contains("t.csv:2") && msg.contains("t.toml:8:") && msg.contains("force_kn"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn non_monotonic_time_and_nan_name_the_csv_line() {
+    let dir = folder(
+        "time",
+        &[
+            (
+                "t.csv",
+                "time_ms,strain_pct,force_kn\n0,0,0\n10,1,10\n10,2,12\n",
+            ),
+            ("t.toml", &tensile_toml(TENSILE_COLUMNS, "")),
+        ],
+    );
+    let e = TensileExperiment::load(&dir.join("t.toml")).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            ExperimentError::NonMonotonicTime {
+                line: 4,
+                column: 1,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    let dir = folder(
+        "nan",
+        &[
+            ("t.csv", "time_ms,strain_pct,force_kn\n0,0,0\n10,nan,10\n"),
+            ("t.toml", &tensile_toml(TENSILE_COLUMNS, "")),
+        ],
+    );
+    let e = TensileExperiment::load(&dir.join("t.toml")).unwrap_err();
+    assert!(
+        e.to_string().contains("t.csv:3: column 2 \"strain_pct\""),
+        "{e}"
+    );
+}
+
+#[test]
+fn wrong_kind_is_an_error() {
+    let toml = tensile_toml(TENSILE_COLUMNS, "").replace("\"tensile\"", "\"torsion\"");
+    let dir = folder("kind", &[("t.csv", TENSILE_CSV), ("t.toml", &toml)]);
+    let e = load_experiment(&dir.join("t.toml")).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::WrongKind { at, .. } if at.line == 1 && at.column == 8),
+        "{e}"
+    );
+}
+
+const SHPB_TOML: &str = "kind = \"shpb\"\ndata = \"s.csv\"\ntemperature = \"293 K\"\n[columns]\n\
+time = { name = \"t_us\", unit = \"us\" }\n\
+incident = { name = \"inc_v\", unit = \"mV\", gauge_factor = 2.0, excitation = \"10 V\", gain = 100.0, active_arms = 2 }\n\
+transmitted = { name = \"tr_ue\", unit = \"microstrain\" }\n\
+[bar]\nelastic_modulus = \"200 GPa\"\nwave_speed = \"5000 m/s\"\ndiameter = \"20 mm\"\n\
+incident_gauge_to_specimen = \"1 m\"\ntransmitted_gauge_to_specimen = \"0.5 m\"\n\
+[specimen]\ndiameter = \"8 mm\"\nlength = \"4 mm\"\n";
+
+#[test]
+fn shpb_bridge_volts_and_wave_speed_convert_to_si() {
+    let dir = folder(
+        "shpb",
+        &[
+            ("s.csv", "t_us,inc_v,tr_ue\n0,-100,-50\n1,200,25\n"),
+            ("s.toml", SHPB_TOML),
+        ],
+    );
+    let Experiment::Shpb(e) = load_experiment(&dir.join("s.toml")).unwrap() else {
+        panic!("not an SHPB experiment")
+    };
+    // ε = 4 U / (n k U_ex gain) = 4 · (−0.1 V) / (2 · 2 · 10 V · 100) = −1e-4.
+    assert!((e.incident[0] + 1e-4).abs() < 1e-18, "{}", e.incident[0]);
+    assert!((e.transmitted[1] - 25e-6).abs() < 1e-18);
+    assert_eq!(e.time_s, vec![0.0, 1e-6]);
+    // ρ = E / c0² = 200e9 / 5000² = 8000 kg/m³.
+    assert!((e.bar.density_kg_m3 - 8000.0).abs() < 1e-9);
+    assert!((e.bar.wave_speed_m_per_s() - 5000.0).abs() < 1e-9);
+}
+
+#[test]
+fn shpb_volts_without_bridge_is_an_error() {
+    let toml = SHPB_TOML.replace(", excitation = \"10 V\"", "");
+    let dir = folder(
+        "bridge",
+        &[
+            ("s.csv", "t_us,inc_v,tr_ue\n0,1,1\n1,1,1\n"),
+            ("s.toml", &toml),
+        ],
+    );
+    let e = ShpbExperiment::load(&dir.join("s.toml")).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::InvalidValue { at, problem, .. } if at.line == 6 && problem.contains("excitation")),
+        "{e}"
+    );
+}
+
+/// The real 304L tension files, read as they are, if the shared data folder exists.
+#[test]
+fn real_304l_file_reads_as_it_is() {
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data/tension/304L");
+    if !data.is_dir() {
+        println!("skipped: {} not found", data.display());
+        return;
+    }
+    let file = "rate_0.01__SML4188-Ring1-17_Pull_0.01.csv";
+    let toml = format!(
+        "kind = \"tensile\"\ndata = \"{}\"\ntemperature = \"297.04 K\"\nnominal_strain_rate = \"0.01 1/s\"\n\
+         [columns]\ntime = {{ name = \"time_s\", unit = \"s\" }}\n\
+         strain = {{ name = \"engineering_strain\", unit = \"1\" }}\n\
+         stress = {{ name = \"engineering_stress_pa\", unit = \"Pa\" }}\n",
+        data.join(file).display()
+    );
+    let dir = folder("304l", &[("e.toml", &toml)]);
+    let e = TensileExperiment::load(&dir.join("e.toml")).unwrap();
+    // Independent check: the file's maximum engineering stress, found by scanning the text.
+    let text = std::fs::read_to_string(data.join(file)).unwrap();
+    let (mut best, mut rows) = (f64::NEG_INFINITY, 0);
+    for line in text.lines().filter(|l| !l.starts_with('#')).skip(1) {
+        best = best.max(
+            line.split(',')
+                .nth(2)
+                .unwrap()
+                .trim()
+                .parse::<f64>()
+                .unwrap(),
+        );
+        rows += 1;
+    }
+    assert_eq!(e.time_s.len(), rows);
+    let used = e.used_range();
+    assert_eq!(e.eng_stress_pa[used.end - 1], best);
+    assert_eq!(used.start, 0);
+}
