@@ -6,3 +6,4 @@ pub mod experiment;
 
 pub use experiment::{load_experiment, Experiment, ExperimentError};
 pub mod fit;
+pub mod fit;

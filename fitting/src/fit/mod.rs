@@ -1,0 +1,14 @@
+//! Johnson-Cook parameter identification: model levels for experiments, the objective,
+//! optimizers (Nelder-Mead from argmin, Levenberg-Marquardt with the exact AD Jacobian or
+//! finite differences), staged and multi-start fits, reports and charts.
+
+pub mod lm;
+pub mod model;
+pub mod nelder_mead;
+pub mod objective;
+pub mod params;
+pub mod preheated;
+pub mod shpb_specimen;
+pub mod single_point;
+pub mod tensile;
+pub mod trace;

@@ -1,0 +1,83 @@
+//! The model level of an experiment, as the objective sees it: a prediction of the
+//! experiment's measured channels at its own samples, and the derivative of that
+//! prediction with respect to named material parameters.
+//!
+//! Single-point models (`single_point`) give the exact derivative by AD through the
+//! driver; a model without AD (the MPM SHPB model, later) keeps the default, a forward
+//! finite difference with columns evaluated in parallel. The optimizers see only this
+//! trait, so a new model level plugs in without touching them.
+
+use anyhow::Result;
+use materials::material::Model;
+use materials::plasticity::ElastoPlastic;
+use nalgebra::DMatrix;
+use rayon::prelude::*;
+
+/// The material a fit varies: an elasto-plastic model with named parameters.
+pub type Material = ElastoPlastic<f64>;
+
+pub trait ExperimentModel: Send + Sync {
+    /// Short name of the model level, for reports (e.g. `single-point SHPB specimen`).
+    fn level(&self) -> &'static str;
+
+    /// Number of predicted values (the length of `predict`).
+    fn len(&self) -> usize;
+
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Predicted values at the experiment's samples, in the units of its measurement.
+    fn predict(&self, material: &Material) -> Result<Vec<f64>>;
+
+    /// Prediction and its Jacobian d(prediction)/d(parameter) (rows: samples, columns:
+    /// `free` in order). Default: forward finite differences (`finite_difference`).
+    fn predict_with_jacobian(
+        &self,
+        material: &Material,
+        free: &[&str],
+    ) -> Result<(Vec<f64>, DMatrix<f64>)> {
+        finite_difference(self, material, free)
+    }
+}
+
+/// Relative forward-difference step: ≈ √(ε_machine · noise of the driver (≈ 1e-10)).
+pub const FD_STEP: f64 = 1e-6;
+
+/// `material` with the named parameters set to `values`.
+pub fn with_values(material: &Material, names: &[&str], values: &[f64]) -> Material {
+    material.map_params(|name, v| match names.iter().position(|n| *n == name) {
+        Some(k) => values[k],
+        None => v,
+    })
+}
+
+/// Forward finite-difference Jacobian, one column per free parameter, columns in parallel;
+/// step h_k = FD_STEP · max(|p_k|, 1e-3).
+pub fn finite_difference<M: ExperimentModel + ?Sized>(
+    model: &M,
+    material: &Material,
+    free: &[&str],
+) -> Result<(Vec<f64>, DMatrix<f64>)> {
+    let base: Vec<f64> = free
+        .iter()
+        .map(|n| {
+            material
+                .param(n)
+                .ok_or_else(|| anyhow::anyhow!("the material has no parameter `{n}`"))
+        })
+        .collect::<Result<_>>()?;
+    let y0 = model.predict(material)?;
+    let columns: Vec<Vec<f64>> = (0..free.len())
+        .into_par_iter()
+        .map(|k| {
+            let h = FD_STEP * base[k].abs().max(1e-3);
+            let mut p = base.clone();
+            p[k] += h;
+            let y = model.predict(&with_values(material, free, &p))?;
+            Ok(y.iter().zip(&y0).map(|(a, b)| (a - b) / h).collect())
+        })
+        .collect::<Result<_>>()?;
+    let jac = DMatrix::from_fn(y0.len(), free.len(), |i, k| columns[k][i]);
+    Ok((y0, jac))
+}

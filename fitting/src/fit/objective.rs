@@ -1,0 +1,233 @@
+//! The objective: a weighted sum of normalized squared residuals over experiments,
+//!
+//! S(p) = Σ_e w_e / n_e Σ_k ((ŷ_ek(p) − y_ek) / s_e)²,  s_e = mean_k |y_ek|,
+//!
+//! on each experiment's own samples within its window (n_e of them). S is dimensionless;
+//! the residual vector r_ek = √(w_e/n_e) (ŷ_ek − y_ek)/s_e gives S = rᵀr. Parameters
+//! enter through the unbounded coordinates u of `ParamSpace`; the Jacobian dr/du is
+//! dr/dp · diag(dp/du). Experiments are evaluated in parallel.
+
+use super::model::{finite_difference, with_values, ExperimentModel, Material};
+use super::params::ParamSpace;
+use anyhow::{bail, Context, Result};
+use nalgebra::DMatrix;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// One experiment in the objective.
+pub struct Block {
+    pub name: String,
+    pub model: Box<dyn ExperimentModel>,
+    /// Measured values at the samples, as the model predicts them.
+    pub measured: Vec<f64>,
+    /// Times of the measured values [s] (for charts).
+    pub times: Vec<f64>,
+    /// Abscissa for charts (e.g. engineering strain) and its label with unit.
+    pub x: Vec<f64>,
+    pub x_label: String,
+    /// Label of the measured quantity with unit, e.g. `engineering stress [MPa]`.
+    pub y_label: String,
+    /// Factor from SI to the chart unit of `measured` (1e-6 for MPa, 1e-3 for kN).
+    pub y_chart_scale: f64,
+    pub weight: f64,
+    /// Normalization s_e = mean |measured|.
+    pub scale: f64,
+}
+
+impl Block {
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        name: &str,
+        model: Box<dyn ExperimentModel>,
+        measured: Vec<f64>,
+        times: Vec<f64>,
+        x: Vec<f64>,
+        x_label: &str,
+        y_label: &str,
+        y_chart_scale: f64,
+        weight: f64,
+    ) -> Result<Self> {
+        if measured.len() != model.len() {
+            bail!(
+                "experiment `{name}`: {} measured values but the model predicts {}",
+                measured.len(),
+                model.len()
+            );
+        }
+        if measured.is_empty() {
+            bail!("experiment `{name}`: no samples in its window");
+        }
+        if !(weight > 0.0 && weight.is_finite()) {
+            bail!("experiment `{name}`: weight {weight} must be positive");
+        }
+        let scale = measured.iter().map(|y| y.abs()).sum::<f64>() / measured.len() as f64;
+        if !(scale > 0.0) {
+            bail!("experiment `{name}`: measured values are all zero");
+        }
+        Ok(Block {
+            name: name.to_string(),
+            model,
+            measured,
+            times,
+            x,
+            x_label: x_label.to_string(),
+            y_label: y_label.to_string(),
+            y_chart_scale,
+            weight,
+            scale,
+        })
+    }
+
+    fn residual_factor(&self) -> f64 {
+        (self.weight / self.measured.len() as f64).sqrt() / self.scale
+    }
+
+    /// RMS of ŷ − y in SI units.
+    pub fn rms(&self, predicted: &[f64]) -> f64 {
+        let s: f64 = predicted
+            .iter()
+            .zip(&self.measured)
+            .map(|(p, y)| (p - y).powi(2))
+            .sum();
+        (s / self.measured.len() as f64).sqrt()
+    }
+}
+
+/// How the Jacobian of the residuals is formed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JacobianKind {
+    /// The model's own (exact AD for single-point models).
+    Exact,
+    /// Forward finite differences for every model.
+    FiniteDifference,
+}
+
+/// The objective over a set of experiments and a set of free parameters.
+pub struct Objective<'a> {
+    pub base: Material,
+    pub blocks: Vec<&'a Block>,
+    pub space: ParamSpace,
+    evaluations: AtomicUsize,
+    jacobians: AtomicUsize,
+}
+
+impl<'a> Objective<'a> {
+    pub fn new(base: Material, blocks: Vec<&'a Block>, space: ParamSpace) -> Result<Self> {
+        if blocks.is_empty() {
+            bail!("objective without experiments");
+        }
+        let n: usize = blocks.iter().map(|b| b.measured.len()).sum();
+        if n < space.len() {
+            bail!("{n} samples cannot determine {} parameters", space.len());
+        }
+        Ok(Objective {
+            base,
+            blocks,
+            space,
+            evaluations: AtomicUsize::new(0),
+            jacobians: AtomicUsize::new(0),
+        })
+    }
+
+    /// Model evaluations so far: (real passes over all experiments, AD Jacobian passes).
+    pub fn counts(&self) -> (usize, usize) {
+        (
+            self.evaluations.load(Ordering::Relaxed),
+            self.jacobians.load(Ordering::Relaxed),
+        )
+    }
+
+    /// The material at bounded parameter values `p`.
+    pub fn material(&self, p: &[f64]) -> Material {
+        with_values(&self.base, &self.space.names(), p)
+    }
+
+    /// Total number of residuals.
+    pub fn len(&self) -> usize {
+        self.blocks.iter().map(|b| b.measured.len()).sum()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Predictions of every experiment at bounded parameters `p`.
+    pub fn predictions(&self, p: &[f64]) -> Result<Vec<Vec<f64>>> {
+        let material = self.material(p);
+        self.evaluations.fetch_add(1, Ordering::Relaxed);
+        self.blocks
+            .par_iter()
+            .map(|b| {
+                b.model
+                    .predict(&material)
+                    .with_context(|| format!("experiment `{}`", b.name))
+            })
+            .collect()
+    }
+
+    fn stack(&self, predictions: &[Vec<f64>]) -> Vec<f64> {
+        let mut r = Vec::with_capacity(self.len());
+        for (b, p) in self.blocks.iter().zip(predictions) {
+            let f = b.residual_factor();
+            r.extend(p.iter().zip(&b.measured).map(|(p, y)| f * (p - y)));
+        }
+        r
+    }
+
+    /// Residual vector at unbounded coordinates `u`.
+    pub fn residuals(&self, u: &[f64]) -> Result<Vec<f64>> {
+        let p = self.space.to_bounded(u);
+        Ok(self.stack(&self.predictions(&p)?))
+    }
+
+    /// Residuals and their Jacobian dr/du at `u`.
+    pub fn residuals_and_jacobian(
+        &self,
+        u: &[f64],
+        kind: JacobianKind,
+    ) -> Result<(Vec<f64>, DMatrix<f64>)> {
+        let p = self.space.to_bounded(u);
+        let dpdu = self.space.derivatives(u);
+        let material = self.material(&p);
+        let names = self.space.names();
+        match kind {
+            JacobianKind::Exact => self.jacobians.fetch_add(1, Ordering::Relaxed),
+            // One base pass plus one pass per parameter.
+            JacobianKind::FiniteDifference => self
+                .evaluations
+                .fetch_add(1 + names.len(), Ordering::Relaxed),
+        };
+        let parts: Vec<(Vec<f64>, DMatrix<f64>)> = self
+            .blocks
+            .par_iter()
+            .map(|b| {
+                match kind {
+                    JacobianKind::Exact => b.model.predict_with_jacobian(&material, &names),
+                    JacobianKind::FiniteDifference => {
+                        finite_difference(b.model.as_ref(), &material, &names)
+                    }
+                }
+                .with_context(|| format!("experiment `{}`", b.name))
+            })
+            .collect::<Result<_>>()?;
+        let predictions: Vec<Vec<f64>> = parts.iter().map(|(y, _)| y.clone()).collect();
+        let r = self.stack(&predictions);
+        let mut jac = DMatrix::zeros(r.len(), names.len());
+        let mut row = 0;
+        for (b, (_, j)) in self.blocks.iter().zip(&parts) {
+            let f = b.residual_factor();
+            for i in 0..j.nrows() {
+                for k in 0..names.len() {
+                    jac[(row + i, k)] = f * j[(i, k)] * dpdu[k];
+                }
+            }
+            row += j.nrows();
+        }
+        Ok((r, jac))
+    }
+}
+
+/// S = rᵀr.
+pub fn cost(r: &[f64]) -> f64 {
+    r.iter().map(|x| x * x).sum()
+}

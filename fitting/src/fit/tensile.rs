@@ -1,0 +1,115 @@
+//! Single-point tensile test: uniaxial stress along x under the measured engineering
+//! strain history ε(t), observed as engineering stress.
+//!
+//! The specimen geometry (gauge length, area A0) is the one at the test's start
+//! temperature θ_s; with the free thermal stretch λ_θ there (see `preheated`), the path is
+//! F_xx(t) = λ_θ (1 + ε(t)), σ_yy = σ_zz = 0, and the engineering stress is
+//! P = force / A0 = σ_xx F_yy F_zz / λ_θ² [Pa] (= σ_xx J / F_xx at θ_s = θ0).
+//!
+//! Quasi-static tests are isothermal at θ_s; high-rate tests are adiabatic (Taylor-Quinney
+//! heating). The path steps at the measured samples, subdivided so that no step exceeds
+//! `MAX_STRAIN_STEP`; noisy strains are made monotone by a running maximum.
+
+use super::model::Material;
+use super::preheated::thermal_stretch;
+use super::single_point::Observable;
+use anyhow::{bail, Result};
+use materials::driver::{LoadPath, Ramp, Record, Temperature};
+use materials::scalar::{c, Scalar};
+
+/// Largest engineering-strain increment of one driver step.
+pub const MAX_STRAIN_STEP: f64 = 2.5e-3;
+
+/// Thermal condition of a tensile test.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Thermal {
+    /// Temperature held at θ_s (quasi-static).
+    Isothermal,
+    /// Adiabatic heating from θ_s (high rate).
+    Adiabatic,
+}
+
+#[derive(Debug, Clone)]
+pub struct Tensile {
+    path: LoadPath,
+    /// Driver record index of each sample.
+    samples: Vec<usize>,
+    theta_start: f64,
+    inv_stretch2: f64,
+}
+
+impl Tensile {
+    /// `times` [s] and engineering `strain` [-] of the samples to predict (strictly
+    /// increasing times, the first at or after the start of loading), the start
+    /// temperature `theta` [K].
+    pub fn new(
+        material: &Material,
+        times: &[f64],
+        strain: &[f64],
+        thermal: Thermal,
+        theta: f64,
+    ) -> Result<Self> {
+        if times.len() < 2 || times.len() != strain.len() {
+            bail!(
+                "tensile model needs at least two samples with one strain each (got {} times, {} strains)",
+                times.len(),
+                strain.len()
+            );
+        }
+        let lambda = thermal_stretch(material, theta);
+        // Start at zero strain one sample interval before the first sample.
+        let mut path_t = vec![times[0] - (times[1] - times[0])];
+        let mut path_e = vec![0.0];
+        let mut samples = Vec::with_capacity(times.len());
+        let mut e_max: f64 = 0.0;
+        for (&t, &e) in times.iter().zip(strain) {
+            let (t_prev, e_prev) = (*path_t.last().unwrap(), *path_e.last().unwrap());
+            if !(t > t_prev) {
+                bail!("tensile model: time {t} s is not after {t_prev} s");
+            }
+            e_max = e_max.max(e);
+            let n = ((e_max - e_prev) / MAX_STRAIN_STEP).ceil().max(1.0) as usize;
+            for k in 1..=n {
+                let w = k as f64 / n as f64;
+                path_t.push(t_prev + w * (t - t_prev));
+                path_e.push(e_prev + w * (e_max - e_prev));
+            }
+            samples.push(path_t.len() - 1);
+        }
+        let stretch = path_e.iter().map(|e| lambda * (1.0 + e)).collect();
+        let temperature = match thermal {
+            Thermal::Isothermal => Temperature::Prescribed(Ramp::constant(theta)),
+            Thermal::Adiabatic => Temperature::Adiabatic,
+        };
+        Ok(Tensile {
+            path: LoadPath::uniaxial_stretch(path_t, stretch, temperature)?,
+            samples,
+            theta_start: theta,
+            inv_stretch2: 1.0 / (lambda * lambda),
+        })
+    }
+}
+
+impl Observable for Tensile {
+    fn level(&self) -> &'static str {
+        "single-point tensile"
+    }
+    fn path(&self) -> &LoadPath {
+        &self.path
+    }
+    fn theta_start(&self) -> f64 {
+        self.theta_start
+    }
+    fn len(&self) -> usize {
+        self.samples.len()
+    }
+    fn observe<D: Scalar>(&self, records: &[Record<D>]) -> Vec<D> {
+        self.samples
+            .iter()
+            .map(|&i| {
+                let f = &records[i].f;
+                records[i].sigma[(0, 0)] * f[(1, 1)] * f[(2, 2)] * c::<D>(self.inv_stretch2)
+            })
+            .collect()
+    }
+}
