@@ -6,4 +6,3 @@ pub mod experiment;
 
 pub use experiment::{load_experiment, Experiment, ExperimentError};
 pub mod fit;
-pub mod fit;
