@@ -7,7 +7,7 @@ use crate::error::MaterialError;
 use nalgebra::{Const, DimMin, SMatrix, SVector};
 
 /// Converged when the scaled residual is below this.
-pub const TOL: f64 = 5e-15;
+pub const TOL: f64 = 1e-13;
 pub const MAX_ITERATIONS: usize = 60;
 
 /// Solve r(x) = 0 from `x0`. `eval` returns r and ∂r/∂x. Returns the root and the

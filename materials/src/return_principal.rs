@@ -54,7 +54,16 @@ pub fn solve(
     let eigen = SymmetricEigen::new(be_trial);
     let eps_trial = eigen.eigenvalues.map(|l2| 0.5 * l2.ln());
     let m_d: ElastoPlastic<DualSVec64<4>> = m.lift();
-    let y0 = SVector::<f64, 4>::new(eps_trial[0], eps_trial[1], eps_trial[2], dalpha0.ln());
+    // First guess: radial return of the trial deviator by √(3/2) Δα0 n^tr.
+    let b_trial = eigen.eigenvalues;
+    let s_trial = b_trial.add_scalar(-b_trial.mean());
+    let shift = s_trial * (1.5f64.sqrt() * dalpha0 / s_trial.norm());
+    let y0 = SVector::<f64, 4>::new(
+        eps_trial[0] - shift[0],
+        eps_trial[1] - shift[1],
+        eps_trial[2] - shift[2],
+        dalpha0.ln(),
+    );
     let (y, _) = local_newton::solve(
         |y| jacobian(|yd| residual(&m_d, &yd, &eps_trial, old, dt), y),
         y0,

@@ -1,8 +1,130 @@
-//! `mpw bench` (being written).
+//! `mpw bench`: nanoseconds per material update (median of repeated timed batches), for
+//! Neo-Hooke, J2 and Johnson-Cook, elastic and plastic steps, reference and fast
+//! returns, and the cost of the AD tangent. Build with `--release` for meaningful numbers.
+
+use anyhow::Result;
+use materials::{ad, load_material, AnyModel, Material, ReturnMap, State};
+use nalgebra::Matrix3;
+use std::hint::black_box;
+use std::path::PathBuf;
+use std::time::Instant;
 
 #[derive(clap::Args, Debug)]
-pub struct Args {}
+pub struct Args {
+    /// Timed batches per case (the median is reported).
+    #[arg(long, default_value_t = 15)]
+    pub repeats: usize,
+    /// Material parameter folder.
+    #[arg(long, default_value = "data/materials")]
+    pub materials: PathBuf,
+}
 
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("mpw bench is not implemented yet")
+/// Median nanoseconds per call of `f`, over `repeats` batches of ≈ 20 ms.
+pub fn ns_per_call(repeats: usize, mut f: impl FnMut()) -> f64 {
+    let start = Instant::now();
+    let mut calibration = 0u64;
+    while start.elapsed().as_secs_f64() < 0.02 {
+        f();
+        calibration += 1;
+    }
+    let batch = calibration.max(1);
+    let mut samples: Vec<f64> = (0..repeats)
+        .map(|_| {
+            let t = Instant::now();
+            for _ in 0..batch {
+                f();
+            }
+            t.elapsed().as_secs_f64() * 1e9 / batch as f64
+        })
+        .collect();
+    samples.sort_by(f64::total_cmp);
+    samples[samples.len() / 2]
+}
+
+fn elasto_plastic(file: &PathBuf, return_map: ReturnMap) -> Result<AnyModel> {
+    match load_material(file)?.model {
+        AnyModel::ElastoPlastic(mut m) => {
+            m.return_map = return_map;
+            Ok(AnyModel::ElastoPlastic(m))
+        }
+        other => Ok(other),
+    }
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let dir = &args.materials;
+    let neo_hooke = load_material(dir.join("aisi_52100.toml"))?.model;
+    let j2 = |rm| elasto_plastic(&dir.join("al6061_t6.toml"), rm);
+    let jc = |rm| elasto_plastic(&dir.join("42crmo4_qt660.toml"), rm);
+    let dt = 1e-6;
+    // Elastic: 0.1 % strain. Plastic: 2 % shear-tension from a pre-strained state.
+    let f_elastic = Matrix3::new(1.001, 0.0002, 0.0, 0.0, 0.9997, 0.0, 0.0, 0.0, 0.9997);
+    let f_pre = Matrix3::new(1.02, 0.01, 0.0, 0.0, 0.99, 0.0, 0.0, 0.0, 0.99);
+    let f_plastic = Matrix3::new(1.04, 0.015, 0.0, 0.002, 0.98, 0.0, 0.0, 0.0, 0.981);
+
+    println!(
+        "material update cost, median of {} batches (ns per call)",
+        args.repeats
+    );
+    println!("{:<44} {:>12}", "case", "ns/update");
+    let row = |name: &str, m: &AnyModel, f: &Matrix3<f64>, plastic: bool| -> Result<()> {
+        let old: State = if plastic {
+            Material::update(m, &f_pre, dt, &m.initial_state())?.1
+        } else {
+            Material::initial_state(m)
+        };
+        let (_, new) = Material::update(m, f, dt, &old)?;
+        anyhow::ensure!(
+            (new.alpha > old.alpha) == plastic,
+            "{name}: step is not {}",
+            if plastic { "plastic" } else { "elastic" }
+        );
+        let ns = ns_per_call(args.repeats, || {
+            black_box(Material::update(black_box(m), black_box(f), dt, black_box(&old)).ok());
+        });
+        println!("{:<44} {:>12.0}", name, ns);
+        let ns_t = ns_per_call(args.repeats, || {
+            black_box(ad::tangent(black_box(m), black_box(f), dt, black_box(&old)).ok());
+        });
+        println!("{:<44} {:>12.0}", format!("{name} + AD tangent"), ns_t);
+        Ok(())
+    };
+    row("neo-hooke", &neo_hooke, &f_elastic, false)?;
+    row(
+        "j2 elastic step",
+        &j2(ReturnMap::Principal)?,
+        &f_elastic,
+        false,
+    )?;
+    row(
+        "j2 plastic step, fast (principal) return",
+        &j2(ReturnMap::Principal)?,
+        &f_plastic,
+        true,
+    )?;
+    row(
+        "j2 plastic step, reference return",
+        &j2(ReturnMap::Reference)?,
+        &f_plastic,
+        true,
+    )?;
+    row(
+        "johnson-cook elastic step",
+        &jc(ReturnMap::Principal)?,
+        &f_elastic,
+        false,
+    )?;
+    row(
+        "johnson-cook plastic step, fast return",
+        &jc(ReturnMap::Principal)?,
+        &f_plastic,
+        true,
+    )?;
+    row(
+        "johnson-cook plastic step, reference return",
+        &jc(ReturnMap::Reference)?,
+        &f_plastic,
+        true,
+    )?;
+    Ok(())
 }
