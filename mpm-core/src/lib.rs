@@ -1,1 +1,35 @@
-//! Explicit Material Point Method (thesis chapters 7-10, appendix E).
+//! Explicit Material Point Method (thesis chapters 5, 7-9, appendix E).
+//!
+//! Particles (structure of arrays) carry mass, velocity, F and σ; material history lives in
+//! per-material blocks. Each step maps particles to a regular Cartesian grid with linear
+//! shape functions, solves the lumped-mass momentum balance with the leapfrog, and maps
+//! back (USL, USF or MUSL). Plane strain, axisymmetric (D = 2) and 3D share one
+//! implementation through the const generic dimension `D`. Rigid bodies act through
+//! penalty contact with Coulomb friction. SI units throughout.
+
+pub mod boundary;
+pub mod contact;
+pub mod discretize;
+pub mod failure;
+pub mod grid;
+pub mod integrators;
+pub mod kinematics;
+pub mod material_block;
+pub mod particles;
+pub mod rigid;
+pub mod shape;
+pub mod shift;
+pub mod solver;
+pub mod sum;
+pub mod timestep;
+
+pub use boundary::{NodeSet, SpringBc, VelocityBc};
+pub use failure::{Cause, SimulationError};
+pub use grid::Grid;
+pub use kinematics::Kinematics;
+pub use material_block::MaterialBlock;
+pub use particles::Particles;
+pub use rigid::RigidBody;
+pub use solver::{Energies, RunError, Scheme, Settings, Solver};
+pub use timestep::TimeStep;
+pub mod verify;

@@ -1,0 +1,90 @@
+//! Boundary conditions.
+//!
+//! - Grid velocity conditions on node sets (eq. 7.28): the chosen components of
+//!   v_{n+1/2}^I are set to v̄ and those of a_n^I to zero (constant prescribed velocity);
+//!   fixed supports set every component, rolling supports and symmetry planes only the
+//!   normal one.
+//! - Spring conditions on particles near a boundary (eq. 12.1):
+//!   f_MP = −κ_BC ((x_MP)_i − (X_MP)_i) in the chosen directions i [N], which keep working
+//!   when the grid moves under a grid shift.
+
+use nalgebra::SVector;
+
+/// A set of grid nodes chosen by their position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NodeSet<const D: usize> {
+    /// Nodes on the plane x_axis = at (within 1e-6 of a cell).
+    Plane { axis: usize, at: f64 },
+    /// Nodes with x_axis ≤ at.
+    Below { axis: usize, at: f64 },
+    /// Nodes with x_axis ≥ at.
+    Above { axis: usize, at: f64 },
+    /// Nodes inside an axis-aligned box.
+    Inside {
+        min: SVector<f64, D>,
+        max: SVector<f64, D>,
+    },
+}
+
+impl<const D: usize> NodeSet<D> {
+    pub fn contains(&self, x: &SVector<f64, D>, h: &SVector<f64, D>) -> bool {
+        match *self {
+            NodeSet::Plane { axis, at } => (x[axis] - at).abs() <= 1e-6 * h[axis],
+            NodeSet::Below { axis, at } => x[axis] <= at + 1e-6 * h[axis],
+            NodeSet::Above { axis, at } => x[axis] >= at - 1e-6 * h[axis],
+            NodeSet::Inside { min, max } => {
+                (0..D).all(|i| x[i] >= min[i] - 1e-6 * h[i] && x[i] <= max[i] + 1e-6 * h[i])
+            }
+        }
+    }
+}
+
+/// Prescribed velocity components on a node set; `None` leaves a component free.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VelocityBc<const D: usize> {
+    pub nodes: NodeSet<D>,
+    pub velocity: [Option<f64>; D],
+}
+
+impl<const D: usize> VelocityBc<D> {
+    /// All components zero.
+    pub fn fixed(nodes: NodeSet<D>) -> Self {
+        VelocityBc {
+            nodes,
+            velocity: [Some(0.0); D],
+        }
+    }
+
+    /// Zero normal velocity on the plane x_axis = at (rolling support, symmetry plane).
+    pub fn symmetry(axis: usize, at: f64) -> Self {
+        let mut velocity = [None; D];
+        velocity[axis] = Some(0.0);
+        VelocityBc {
+            nodes: NodeSet::Plane { axis, at },
+            velocity,
+        }
+    }
+}
+
+/// Springs (eq. 12.1) tying particles to their reference positions in some directions.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpringBc<const D: usize> {
+    pub particles: Vec<usize>,
+    pub directions: [bool; D],
+    /// κ_BC [N/m = kg/s²].
+    pub stiffness: f64,
+}
+
+impl<const D: usize> SpringBc<D> {
+    /// Spring force on a particle at `x` that started at `x_ref` [N].
+    #[inline]
+    pub fn force(&self, x: &SVector<f64, D>, x_ref: &SVector<f64, D>) -> SVector<f64, D> {
+        SVector::from_fn(|i, _| {
+            if self.directions[i] {
+                -self.stiffness * (x[i] - x_ref[i])
+            } else {
+                0.0
+            }
+        })
+    }
+}

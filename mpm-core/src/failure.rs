@@ -1,0 +1,29 @@
+//! A run that goes bad stops with an error naming the step, the time, the particle and
+//! the cause. Users study where methods fail, so this is a result, not a crash: all output
+//! written before the failure stays on disk.
+
+use materials::MaterialError;
+use thiserror::Error;
+
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum Cause {
+    #[error("non-finite {what}")]
+    NonFinite { what: &'static str },
+    #[error("det F = {det_f:e} <= 0 (inverted deformation)")]
+    InvertedDeformation { det_f: f64 },
+    #[error("material update failed: {0}")]
+    Material(MaterialError),
+    #[error("left the allowed region at {position:?} m")]
+    LeftDomain { position: Vec<f64> },
+    #[error("energy blow-up: total energy {energy:e} J exceeds {limit:e} J (blow-up factor times the energy supplied)")]
+    EnergyBlowUp { energy: f64, limit: f64 },
+}
+
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("simulation failed at step {step}, t = {time:e} s{}: {cause}", particle.map(|p| format!(", particle {p}")).unwrap_or_default())]
+pub struct SimulationError {
+    pub step: usize,
+    pub time: f64,
+    pub particle: Option<usize>,
+    pub cause: Cause,
+}

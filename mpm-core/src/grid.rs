@@ -1,0 +1,155 @@
+//! Regular Cartesian background grid (appendix E): cell lookup by floor((x − o)/h)
+//! (eq. E.1), node coordinates o + n h (eq. E.2) and lexicographic node numbers with x
+//! fastest (eq. E.3). The grid is refitted every step to the bounding box of the particles
+//! on a lattice fixed by its origin o, so it grows (and shrinks) to hold them. The origin
+//! may be displaced for one step by the grid shift of eq. E.8 (see `shift`).
+//!
+//! Nodal quantities (table 7.1): mass m [kg], momentum p [kg m/s], force f [N], and after
+//! the grid solve the velocity v_{n+1/2} [m/s] and acceleration a_n [m/s²].
+
+use nalgebra::SVector;
+
+/// One grid node's temporary state.
+#[derive(Debug, Clone, Copy)]
+pub struct Node<const D: usize> {
+    pub mass: f64,
+    pub momentum: SVector<f64, D>,
+    pub force: SVector<f64, D>,
+    pub velocity: SVector<f64, D>,
+    pub acceleration: SVector<f64, D>,
+}
+
+impl<const D: usize> Node<D> {
+    pub const EMPTY: Self = Node {
+        mass: 0.0,
+        momentum: SVector::from_array_storage(nalgebra::ArrayStorage([[0.0; D]; 1])),
+        force: SVector::from_array_storage(nalgebra::ArrayStorage([[0.0; D]; 1])),
+        velocity: SVector::from_array_storage(nalgebra::ArrayStorage([[0.0; D]; 1])),
+        acceleration: SVector::from_array_storage(nalgebra::ArrayStorage([[0.0; D]; 1])),
+    };
+}
+
+#[derive(Debug, Clone)]
+pub struct Grid<const D: usize> {
+    /// Cell size h_i [m].
+    pub spacing: SVector<f64, D>,
+    pub inv_spacing: SVector<f64, D>,
+    /// Origin of the lattice for the current step (shifted if grid shift is on) [m].
+    pub origin: SVector<f64, D>,
+    /// Lattice index of the first stored node in each direction.
+    pub lo: [i64; D],
+    /// Number of stored nodes in each direction.
+    pub dims: [usize; D],
+    /// Index stride of each direction (x fastest).
+    pub strides: [usize; D],
+    pub nodes: Vec<Node<D>>,
+}
+
+impl<const D: usize> Grid<D> {
+    pub fn new(spacing: SVector<f64, D>, origin: SVector<f64, D>) -> Self {
+        Grid {
+            spacing,
+            inv_spacing: spacing.map(|h| 1.0 / h),
+            origin,
+            lo: [0; D],
+            dims: [0; D],
+            strides: [0; D],
+            nodes: Vec::new(),
+        }
+    }
+
+    /// The same grid geometry without node storage.
+    pub fn clone_meta(&self) -> Self {
+        Grid {
+            nodes: Vec::new(),
+            ..*self
+        }
+    }
+
+    /// Smallest cell dimension l_cr (eq. 7.22) [m].
+    pub fn min_spacing(&self) -> f64 {
+        self.spacing.min()
+    }
+
+    /// Lattice cell index of a position (eq. E.1).
+    #[inline]
+    pub fn cell_of(&self, x: &SVector<f64, D>) -> [i64; D] {
+        std::array::from_fn(|i| ((x[i] - self.origin[i]) * self.inv_spacing[i]).floor() as i64)
+    }
+
+    /// Refit the stored node block to hold cells from `cell_min` to `cell_max` (inclusive)
+    /// and clear every node.
+    pub fn fit(&mut self, cell_min: [i64; D], cell_max: [i64; D]) {
+        self.lo = cell_min;
+        let mut stride = 1;
+        for i in 0..D {
+            self.dims[i] = (cell_max[i] - cell_min[i] + 2) as usize;
+            self.strides[i] = stride;
+            stride *= self.dims[i];
+        }
+        self.nodes.clear();
+        self.nodes.resize(stride, Node::EMPTY);
+    }
+
+    /// Node number of the lower corner of `cell` (eq. E.3) and the local coordinates of `x`
+    /// in that cell.
+    #[inline]
+    pub fn locate(&self, x: &SVector<f64, D>) -> (usize, SVector<f64, D>) {
+        let mut index = 0;
+        let mut xi = SVector::<f64, D>::zeros();
+        for i in 0..D {
+            let s = (x[i] - self.origin[i]) * self.inv_spacing[i];
+            let c = s.floor();
+            xi[i] = s - c;
+            index += (c as i64 - self.lo[i]) as usize * self.strides[i];
+        }
+        (index, xi)
+    }
+
+    /// Offsets of the 2^D corners of a cell from its lower corner, in node numbers.
+    pub fn corner_offsets(&self) -> [usize; 8] {
+        std::array::from_fn(|k| {
+            (0..D)
+                .map(|i| {
+                    if (k >> i) & 1 == 1 && k < crate::shape::corners(D) {
+                        self.strides[i]
+                    } else {
+                        0
+                    }
+                })
+                .sum()
+        })
+    }
+
+    /// Lattice coordinates of node number `index`.
+    #[inline]
+    pub fn node_lattice(&self, index: usize) -> [i64; D] {
+        std::array::from_fn(|i| self.lo[i] + ((index / self.strides[i]) % self.dims[i]) as i64)
+    }
+
+    /// Position of node number `index` (eq. E.2) [m].
+    #[inline]
+    pub fn node_position(&self, index: usize) -> SVector<f64, D> {
+        let n = self.node_lattice(index);
+        SVector::from_fn(|i, _| self.origin[i] + n[i] as f64 * self.spacing[i])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector2;
+
+    #[test]
+    fn locate_finds_the_enclosing_cell_and_local_coordinates() {
+        let mut g = Grid::new(Vector2::new(0.5, 0.25), Vector2::new(-1.0, 0.0));
+        g.fit([0, 0], [3, 3]);
+        let x = Vector2::new(0.1, 0.3);
+        let (base, xi) = g.locate(&x);
+        assert_eq!(g.cell_of(&x), [2, 1]);
+        assert_eq!(base, 2 + 1 * 5);
+        assert!((xi - Vector2::new(0.2, 0.2)).norm() < 1e-12);
+        let p = g.node_position(base + g.corner_offsets()[3]);
+        assert!((p - Vector2::new(0.5, 0.5)).norm() < 1e-12);
+    }
+}

@@ -1,0 +1,24 @@
+//! A material block: one material model, the contiguous range of particles made of it and
+//! their history variables `State { fp_inv, alpha, theta }`, kept per block rather than in
+//! a particle struct so that elastic and plastic bodies each store only what they use
+//! (the history of every point of a block has the same layout).
+
+use materials::{Material, State};
+use std::ops::Range;
+use std::sync::Arc;
+
+pub struct MaterialBlock {
+    pub name: String,
+    pub material: Arc<dyn Material>,
+    /// Particles of this block (indices into `Particles`).
+    pub range: Range<usize>,
+    /// History of each particle of `range`, in the same order.
+    pub state: Vec<State<f64>>,
+}
+
+impl MaterialBlock {
+    /// Dilatational wave speed c = √((Λ+2G)/ρ0) (eq. 7.23) [m/s].
+    pub fn wave_speed(&self) -> f64 {
+        (self.material.p_wave_modulus() / self.material.density()).sqrt()
+    }
+}

@@ -1,0 +1,805 @@
+//! Explicit MPM time stepping with the leapfrog on the grid (section 7.5, algorithms 6-12)
+//! in three variants of when the stress is updated (Bardenhagen 2002):
+//!
+//! - `Usl` (algorithm 6): map m, p = Σ N m v, f = −Σ ∇N·σ V + Σ N (m b + f_ext) (eq. 7.30-
+//!   7.32, 9.2); solve a_I = (f_I − α_d p_I)/m_I (eq. 7.21, 7.24), v_I = p_I/m_I + a_I Δt
+//!   (eq. 7.27); velocity conditions (eq. 7.28); map back a_MP = Σ N a_I,
+//!   ṽ_MP = Σ N v_I, L = Σ v_I ⊗ ∇N_I; x ← x + ṽ Δt, v ← v + a_MP Δt (algorithm 12 with the
+//!   typo fixed), F ← (I + L Δt) F, V = det F V0, then σ and history from the material.
+//! - `Usf`: map m, p; v_I = p_I/m_I; update F and σ from that field; then map f with the
+//!   new stress, solve and move the particles.
+//! - `Musl`: as USL, but after the particle velocities are updated they are mapped to the
+//!   grid again and L is taken from that smoothed velocity field.
+//!
+//! Nodes with mass below the cutoff get zero velocity and acceleration. The scatter of
+//! particles to nodes runs in parallel without locks: particles are bucketed into slabs of
+//! cells along the last axis, slabs of one colour (even or odd) touch disjoint node
+//! ranges, and each slab adds its particles in index order, so the sums do not depend on
+//! the number of threads.
+
+use crate::boundary::{NodeSet, SpringBc, VelocityBc};
+use crate::contact::{candidate_force, ContactState};
+use crate::failure::{Cause, SimulationError};
+use crate::grid::{Grid, Node};
+use crate::kinematics::Kinematics;
+use crate::material_block::MaterialBlock;
+use crate::particles::Particles;
+use crate::rigid::RigidBody;
+use crate::shape::{corners, linear};
+use crate::shift::GridShift;
+use crate::sum::fixed_sum;
+use crate::timestep::{self, TimeStep};
+use materials::Material;
+use nalgebra::{Matrix3, SMatrix, SVector};
+use rayon::prelude::*;
+use std::sync::Arc;
+
+/// When the stress is updated within a step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Scheme {
+    Usl,
+    Usf,
+    Musl,
+}
+
+/// Solver parameters that do not depend on the bodies.
+#[derive(Debug, Clone)]
+pub struct Settings<const D: usize> {
+    pub kinematics: Kinematics,
+    pub scheme: Scheme,
+    /// Cell size h_i [m].
+    pub spacing: SVector<f64, D>,
+    /// Lattice origin ō [m].
+    pub origin: SVector<f64, D>,
+    /// Body force per unit mass b [m/s²] (gravity).
+    pub body_force: SVector<f64, D>,
+    /// Artificial damping α_d [1/s] (eq. 7.24).
+    pub damping: f64,
+    /// Nodes lighter than this fraction of the lightest particle are treated as empty.
+    pub mass_cutoff: f64,
+    /// Safety factor on the CFL and spring limits.
+    pub safety: f64,
+    /// Fixed time step [s] instead of the estimate.
+    pub dt: Option<f64>,
+    /// Particles must stay inside this box [m].
+    pub domain: Option<(SVector<f64, D>, SVector<f64, D>)>,
+    /// Grid shift amplitudes d̃ [m] and seed (eq. E.8).
+    pub grid_shift: Option<(SVector<f64, D>, u64)>,
+    /// A run fails when K + W_int exceeds this factor times the energy supplied.
+    pub blowup_factor: f64,
+}
+
+impl<const D: usize> Settings<D> {
+    pub fn new(kinematics: Kinematics, spacing: f64) -> Self {
+        assert_eq!(
+            kinematics.dimension(),
+            D,
+            "kinematics {kinematics:?} needs a {}D grid",
+            kinematics.dimension()
+        );
+        Settings {
+            kinematics,
+            scheme: Scheme::Usl,
+            spacing: SVector::repeat(spacing),
+            origin: SVector::zeros(),
+            body_force: SVector::zeros(),
+            damping: 0.0,
+            mass_cutoff: 1e-6,
+            safety: 0.3,
+            dt: None,
+            domain: None,
+            grid_shift: None,
+            blowup_factor: 10.0,
+        }
+    }
+}
+
+/// Energy bookkeeping [J]: K + W_int = K0 + W_ext + W_bc for an exact integrator.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Energies {
+    /// Kinetic energy Σ ½ m v².
+    pub kinetic: f64,
+    /// Stress work ∫ σ : D dv dt (stored elastic energy plus plastic dissipation).
+    pub internal: f64,
+    /// Work of body forces, applied (traction) forces, contact and spring forces, and
+    /// artificial damping.
+    pub external: f64,
+    /// Work of prescribed grid velocities.
+    pub boundary: f64,
+    /// Initial kinetic energy.
+    pub initial: f64,
+    /// K0 plus the integral of the absolute power of every external source.
+    pub supplied: f64,
+}
+
+impl Energies {
+    /// Energy not accounted for: K + W_int − (K0 + W_ext + W_bc).
+    pub fn error(&self) -> f64 {
+        self.kinetic + self.internal - (self.initial + self.external + self.boundary)
+    }
+}
+
+/// A rigid body and its contact state.
+pub struct RigidContact<const D: usize> {
+    pub body: RigidBody<D>,
+    pub contact: ContactState<D>,
+}
+
+/// Per-particle work arrays of one step.
+#[derive(Default)]
+struct Scratch<const D: usize> {
+    /// Applied, spring and contact force on each particle [N].
+    force: Vec<SVector<f64, D>>,
+    /// Grid velocity interpolated to the particle, ṽ [m/s].
+    grid_velocity: Vec<SVector<f64, D>>,
+    /// Stress work increment of each particle [J].
+    work: Vec<f64>,
+    /// Particles bucketed by slab, and the start of each slab's bucket.
+    order: Vec<u32>,
+    slab_start: Vec<usize>,
+}
+
+pub struct Solver<const D: usize> {
+    pub settings: Settings<D>,
+    pub particles: Particles<D>,
+    pub blocks: Vec<MaterialBlock>,
+    pub grid: Grid<D>,
+    pub velocity_bcs: Vec<VelocityBc<D>>,
+    pub springs: Vec<SpringBc<D>>,
+    pub rigid: Vec<RigidContact<D>>,
+    /// Named particles whose positions are recorded.
+    pub control_points: Vec<(String, usize)>,
+    pub time: f64,
+    pub step: usize,
+    pub dt: f64,
+    pub energies: Energies,
+    shift: Option<GridShift<D>>,
+    mass_cutoff: f64,
+    scratch: Scratch<D>,
+}
+
+/// Embed the in-plane D×D block in a 3×3 tensor.
+#[inline]
+fn embed<const D: usize>(a: &SMatrix<f64, D, D>) -> Matrix3<f64> {
+    let mut m = Matrix3::zeros();
+    m.fixed_view_mut::<D, D>(0, 0).copy_from(a);
+    m
+}
+
+impl<const D: usize> Solver<D> {
+    pub fn new(settings: Settings<D>) -> Self {
+        let grid = Grid::new(settings.spacing, settings.origin);
+        let shift = settings.grid_shift.map(|(a, seed)| GridShift::new(a, seed));
+        let mut velocity_bcs = Vec::new();
+        if settings.kinematics == Kinematics::Axisymmetric {
+            // no radial motion on the axis r = 0 (and no nodes beyond it move radially)
+            let mut velocity = [None; D];
+            velocity[0] = Some(0.0);
+            velocity_bcs.push(VelocityBc {
+                nodes: NodeSet::Below { axis: 0, at: 0.0 },
+                velocity,
+            });
+        }
+        Solver {
+            settings,
+            particles: Particles::default(),
+            blocks: Vec::new(),
+            grid,
+            velocity_bcs,
+            springs: Vec::new(),
+            rigid: Vec::new(),
+            control_points: Vec::new(),
+            time: 0.0,
+            step: 0,
+            dt: 0.0,
+            energies: Energies::default(),
+            shift,
+            mass_cutoff: 0.0,
+            scratch: Scratch::default(),
+        }
+    }
+
+    /// Add a body of one material from particle positions and volumes; returns its block
+    /// index. Every particle starts with velocity `velocity`, F = I and σ = 0.
+    pub fn add_body(
+        &mut self,
+        name: &str,
+        material: Arc<dyn Material>,
+        points: &[(SVector<f64, D>, f64)],
+        velocity: SVector<f64, D>,
+    ) -> usize {
+        let block = self.blocks.len();
+        let start = self.particles.len();
+        for (x, v) in points {
+            self.particles
+                .push(*x, velocity, *v, material.density(), block as u32);
+        }
+        let state = vec![material.initial_state(); points.len()];
+        self.blocks.push(MaterialBlock {
+            name: name.into(),
+            material,
+            range: start..self.particles.len(),
+            state,
+        });
+        block
+    }
+
+    pub fn add_rigid_body(&mut self, body: RigidBody<D>) {
+        self.rigid.push(RigidContact {
+            body,
+            contact: ContactState::default(),
+        });
+    }
+
+    /// Index of the particle nearest to `x` (lowest index on ties).
+    pub fn nearest_particle(&self, x: &SVector<f64, D>) -> usize {
+        let mut best = (f64::INFINITY, 0);
+        for (i, p) in self.particles.position.iter().enumerate() {
+            let d = (p - x).norm_squared();
+            if d < best.0 {
+                best = (d, i);
+            }
+        }
+        best.1
+    }
+
+    /// Spread a total force over particles in proportion to their volume, the traction
+    /// equivalent of eq. 7.31 with eq. 8.3: Σ t̄ h̄ v = ∫ t̄ da.
+    pub fn add_traction(&mut self, particles: &[usize], total_force: SVector<f64, D>) {
+        let volume: f64 = particles.iter().map(|&p| self.particles.volume0[p]).sum();
+        for &p in particles {
+            self.particles.applied_force[p] += total_force * (self.particles.volume0[p] / volume);
+        }
+    }
+
+    /// Choose Δt (eq. 7.22-7.23 and spring stability) and prepare the run.
+    pub fn initialize(&mut self) -> TimeStep {
+        let n = self.particles.len();
+        let mut speed: f64 = 0.0;
+        for b in &self.blocks {
+            let c = b.wave_speed();
+            for p in b.range.clone() {
+                speed = speed.max(c + self.particles.velocity[p].norm());
+            }
+        }
+        let lightest = self
+            .particles
+            .mass
+            .iter()
+            .cloned()
+            .fold(f64::INFINITY, f64::min);
+        let stiffest = self
+            .rigid
+            .iter()
+            .map(|r| r.body.penalty)
+            .chain(self.springs.iter().map(|s| s.stiffness))
+            .fold(0.0, f64::max);
+        let spring = (stiffest > 0.0).then_some((stiffest, lightest));
+        let ts = timestep::choose(
+            self.grid.min_spacing(),
+            speed,
+            spring,
+            self.settings.safety,
+            self.settings.dt,
+        );
+        self.dt = ts.dt;
+        self.mass_cutoff = self.settings.mass_cutoff * lightest;
+        self.scratch.force = vec![SVector::zeros(); n];
+        self.scratch.grid_velocity = vec![SVector::zeros(); n];
+        self.scratch.work = vec![0.0; n];
+        let k0 = self.kinetic_energy();
+        self.energies = Energies {
+            kinetic: k0,
+            initial: k0,
+            supplied: k0,
+            ..Energies::default()
+        };
+        ts
+    }
+
+    pub fn kinetic_energy(&self) -> f64 {
+        let p = &self.particles;
+        fixed_sum(p.len(), 0.0, |i| {
+            0.5 * p.mass[i] * p.velocity[i].norm_squared()
+        })
+    }
+
+    /// Total linear momentum Σ m v [kg m/s].
+    pub fn momentum(&self) -> SVector<f64, D> {
+        let p = &self.particles;
+        fixed_sum(p.len(), SVector::zeros(), |i| p.velocity[i] * p.mass[i])
+    }
+
+    /// Linear momentum of one body [kg m/s].
+    pub fn body_momentum(&self, block: usize) -> SVector<f64, D> {
+        let p = &self.particles;
+        let r = self.blocks[block].range.clone();
+        fixed_sum(r.len(), SVector::zeros(), |i| {
+            p.velocity[r.start + i] * p.mass[r.start + i]
+        })
+    }
+
+    /// Advance one time step.
+    pub fn step(&mut self) -> Result<(), SimulationError> {
+        self.refit_grid();
+        self.external_forces();
+        match self.settings.scheme {
+            Scheme::Usl => {
+                self.scatter(true, true, true);
+                self.solve_grid(true);
+                self.gather(true, true)?;
+            }
+            Scheme::Usf => {
+                self.scatter(true, true, false);
+                self.solve_grid(false);
+                self.gather(false, true)?;
+                self.scatter(false, false, true);
+                self.solve_grid(true);
+                self.gather(true, false)?;
+            }
+            Scheme::Musl => {
+                self.scatter(true, true, true);
+                self.solve_grid(true);
+                self.gather(true, false)?;
+                self.scatter(false, true, false);
+                self.solve_grid(false);
+                self.gather(false, true)?;
+            }
+        }
+        self.advect()?;
+        self.time += self.dt;
+        self.step += 1;
+        self.check_energy()
+    }
+
+    fn failure(&self, particle: Option<usize>, cause: Cause) -> SimulationError {
+        SimulationError {
+            step: self.step,
+            time: self.time,
+            particle,
+            cause,
+        }
+    }
+
+    /// Fit the grid to the particles' bounding box (shifted origin if grid shift is on).
+    fn refit_grid(&mut self) {
+        let shift = self.shift.as_mut().map_or(SVector::zeros(), |s| s.next());
+        self.grid.origin = self.settings.origin + shift;
+        let x = &self.particles.position;
+        let (lo, hi) = x
+            .par_iter()
+            .fold(
+                || {
+                    (
+                        SVector::<f64, D>::repeat(f64::INFINITY),
+                        SVector::<f64, D>::repeat(f64::NEG_INFINITY),
+                    )
+                },
+                |(lo, hi), p| (lo.inf(p), hi.sup(p)),
+            )
+            .reduce(
+                || {
+                    (
+                        SVector::repeat(f64::INFINITY),
+                        SVector::repeat(f64::NEG_INFINITY),
+                    )
+                },
+                |a, b| (a.0.inf(&b.0), a.1.sup(&b.1)),
+            );
+        let (cmin, cmax) = (self.grid.cell_of(&lo), self.grid.cell_of(&hi));
+        self.grid.fit(cmin, cmax);
+    }
+
+    /// Applied, spring (eq. 12.1) and penalty contact (eq. 9.2-9.7) forces on particles.
+    fn external_forces(&mut self) {
+        let p = &self.particles;
+        self.scratch.force.copy_from_slice(&p.applied_force);
+        for s in &self.springs {
+            for &i in &s.particles {
+                self.scratch.force[i] += s.force(&p.position[i], &p.reference_position[i]);
+            }
+        }
+        let (t, dt, step, h) = (self.time, self.dt, self.step, self.grid.min_spacing());
+        let max_speed = p
+            .velocity
+            .par_iter()
+            .map(|v| v.norm())
+            .reduce(|| 0.0, f64::max);
+        for rc in &mut self.rigid {
+            let body = &rc.body;
+            let pose = body.motion.pose(t);
+            let interval = body.search_interval.max(1);
+            if step % interval == 0 {
+                // margin: particle travel plus body travel until the next search, plus a cell
+                let later = body.motion.pose(t + interval as f64 * dt);
+                let reach = body.bounds.map_or_else(
+                    || {
+                        let (lo, hi) = (
+                            self.grid.node_position(0),
+                            self.grid.node_position(self.grid.nodes.len() - 1),
+                        );
+                        (hi - lo).norm() + (lo - pose.center).norm()
+                    },
+                    |(c, r)| (c - pose.center).norm() + r,
+                );
+                let turn = (later.rotation - pose.rotation).norm();
+                let margin = h
+                    + 2.0 * interval as f64 * dt * max_speed
+                    + (later.translation - pose.translation).norm()
+                    + turn * reach;
+                let candidates: Vec<usize> = (0..p.len())
+                    .into_par_iter()
+                    .filter(|&i| {
+                        let xb = pose.to_body(&p.position[i]);
+                        match body.bounds {
+                            Some((c, r)) => (xb - c).norm() < r + margin,
+                            None => body.nearest_plane(&xb).0 < margin,
+                        }
+                    })
+                    .collect();
+                rc.contact.set_candidates(candidates);
+            }
+            let c = &mut rc.contact;
+            let forces: Vec<Option<SVector<f64, D>>> = c
+                .candidates
+                .par_iter()
+                .zip(c.attachment.par_iter_mut())
+                .map(|(&i, a)| candidate_force(body, &pose, &p.position[i], a))
+                .collect();
+            c.force = SVector::zeros();
+            c.active = 0;
+            for (&i, f) in c.candidates.iter().zip(&forces) {
+                if let Some(f) = f {
+                    self.scratch.force[i] += f;
+                    c.force -= f;
+                    c.active += 1;
+                }
+            }
+        }
+    }
+
+    /// Particle-to-grid transfer of the chosen quantities (algorithm 9), lock-free and
+    /// deterministic (see the module notes).
+    fn scatter(&mut self, mass: bool, momentum: bool, force: bool) {
+        let grid = &mut self.grid;
+        grid.nodes.par_iter_mut().for_each(|n| {
+            if mass {
+                n.mass = 0.0;
+            }
+            if momentum {
+                n.momentum = SVector::zeros();
+            }
+            if force {
+                n.force = SVector::zeros();
+            }
+        });
+        let last = D - 1;
+        let cells = grid.dims[last] - 1;
+        let width = cells.div_ceil(32).max(1);
+        let slabs = cells.div_ceil(width);
+        let stride = grid.strides[last];
+        let p = &self.particles;
+        let s = &mut self.scratch;
+        // bucket particles by slab (stable counting sort)
+        let (origin, inv_h, lo) = (grid.origin[last], grid.inv_spacing[last], grid.lo[last]);
+        let slab_of = |i: usize| {
+            ((((p.position[i][last] - origin) * inv_h).floor() as i64 - lo) as usize) / width
+        };
+        s.slab_start.clear();
+        s.slab_start.resize(slabs + 1, 0);
+        for i in 0..p.len() {
+            s.slab_start[slab_of(i) + 1] += 1;
+        }
+        for k in 0..slabs {
+            s.slab_start[k + 1] += s.slab_start[k];
+        }
+        s.order.resize(p.len(), 0);
+        let mut next = s.slab_start.clone();
+        for i in 0..p.len() {
+            let k = slab_of(i);
+            s.order[next[k]] = i as u32;
+            next[k] += 1;
+        }
+        let offsets = grid.corner_offsets();
+        let axisymmetric = self.settings.kinematics == Kinematics::Axisymmetric;
+        let b = self.settings.body_force;
+        let grid_ro = grid.clone_meta();
+        for colour in 0..2 {
+            let mut parts: Vec<(usize, usize, &mut [Node<D>])> = Vec::new();
+            let mut rest: &mut [Node<D>] = &mut grid.nodes;
+            let mut consumed = 0;
+            for k in (colour..slabs).step_by(2) {
+                let start = k * width * stride;
+                let end = (((k + 1) * width + 1) * stride).min(consumed + rest.len());
+                let tail = std::mem::take(&mut rest);
+                let (_, tail) = tail.split_at_mut(start - consumed);
+                let (mine, tail) = tail.split_at_mut(end - start);
+                rest = tail;
+                consumed = end;
+                parts.push((k, start, mine));
+            }
+            let (order, slab_start, ext) = (&s.order, &s.slab_start, &s.force);
+            parts.into_par_iter().for_each(|(k, start, nodes)| {
+                for &i in &order[slab_start[k]..slab_start[k + 1]] {
+                    let i = i as usize;
+                    let x = p.position[i];
+                    let (base, xi) = grid_ro.locate(&x);
+                    let w = linear(&xi, &grid_ro.inv_spacing);
+                    let m = p.mass[i];
+                    let mv = p.velocity[i] * m;
+                    let f_ext = ext[i] + b * m;
+                    let vol = p.volume[i];
+                    let sigma: SMatrix<f64, D, D> =
+                        p.stress[i].fixed_view::<D, D>(0, 0).into_owned() * vol;
+                    let hoop = if axisymmetric {
+                        p.stress[i][(2, 2)] * vol / x[0]
+                    } else {
+                        0.0
+                    };
+                    for c in 0..corners(D) {
+                        let node = &mut nodes[base + offsets[c] - start];
+                        let n = w.n[c];
+                        if mass {
+                            node.mass += n * m;
+                        }
+                        if momentum {
+                            node.momentum += mv * n;
+                        }
+                        if force {
+                            let mut f = f_ext * n - sigma * w.grad[c];
+                            f[0] -= hoop * n;
+                            node.force += f;
+                        }
+                    }
+                }
+            });
+        }
+    }
+
+    /// Grid solve (algorithm 10): with `accelerate`, a = (f − α_d p)/m and
+    /// v = p/m + a Δt; without, v = p/m and a = 0. Velocity conditions last (eq. 7.28).
+    fn solve_grid(&mut self, accelerate: bool) {
+        let (dt, alpha, cutoff) = (self.dt, self.settings.damping, self.mass_cutoff);
+        let grid = &mut self.grid;
+        let meta = grid.clone_meta();
+        let bcs = &self.velocity_bcs;
+        let nodes = &mut grid.nodes;
+        let work: Vec<(f64, f64, f64)> = nodes
+            .par_chunks_mut(2048)
+            .enumerate()
+            .map(|(chunk, nodes)| {
+                let mut w = (0.0, 0.0, 0.0);
+                for (j, n) in nodes.iter_mut().enumerate() {
+                    if n.mass <= cutoff {
+                        n.velocity = SVector::zeros();
+                        n.acceleration = SVector::zeros();
+                        continue;
+                    }
+                    let v_old = n.momentum / n.mass;
+                    if accelerate {
+                        let damping = n.momentum * alpha;
+                        n.acceleration = (n.force - damping) / n.mass;
+                        n.velocity = v_old + n.acceleration * dt;
+                        w.0 -= damping.dot(&n.velocity) * dt;
+                    } else {
+                        n.acceleration = SVector::zeros();
+                        n.velocity = v_old;
+                    }
+                    if bcs.is_empty() {
+                        continue;
+                    }
+                    let x = meta.node_position(chunk * 2048 + j);
+                    for bc in bcs {
+                        if bc.nodes.contains(&x, &meta.spacing) {
+                            for (i, v) in bc.velocity.iter().enumerate() {
+                                if let Some(v) = v {
+                                    if accelerate {
+                                        // work of the reaction impulse m (v̄ − v) on v̄
+                                        let dw = n.mass * (v - n.velocity[i]) * v;
+                                        w.1 += dw;
+                                        w.2 += dw.abs();
+                                    }
+                                    n.velocity[i] = *v;
+                                    n.acceleration[i] = 0.0;
+                                }
+                            }
+                        }
+                    }
+                }
+                w
+            })
+            .collect();
+        if accelerate {
+            for (damping, boundary, boundary_abs) in work {
+                self.energies.external += damping;
+                self.energies.supplied += damping.abs();
+                self.energies.boundary += boundary;
+                self.energies.supplied += boundary_abs;
+            }
+        }
+    }
+
+    /// Grid-to-particle transfer (algorithms 11-12). With `motion`: v_MP ← v_MP + a_MP Δt
+    /// and ṽ stored for the position update. With `deformation`: F, V, σ and history.
+    fn gather(&mut self, motion: bool, deformation: bool) -> Result<(), SimulationError> {
+        let dt = self.dt;
+        let grid = &self.grid;
+        let offsets = grid.corner_offsets();
+        let axisymmetric = self.settings.kinematics == Kinematics::Axisymmetric;
+        let p = &mut self.particles;
+        let s = &mut self.scratch;
+        let mut first_failure: Option<(usize, Cause)> = None;
+        for block in &mut self.blocks {
+            let r = block.range.clone();
+            let material = &*block.material;
+            let failure = (
+                &p.position[r.clone()],
+                &p.reference_position[r.clone()],
+                &mut p.velocity[r.clone()],
+                &p.volume0[r.clone()],
+                &mut p.volume[r.clone()],
+                &mut p.deformation[r.clone()],
+                &mut p.stress[r.clone()],
+                &mut block.state[..],
+                &mut s.grid_velocity[r.clone()],
+                &mut s.work[r.clone()],
+            )
+                .into_par_iter()
+                .enumerate()
+                .filter_map(
+                    |(j, (x, x_ref, v, v0, vol, f, sigma, state, v_grid, work))| {
+                        let (base, xi) = grid.locate(x);
+                        let w = linear(&xi, &grid.inv_spacing);
+                        let mut vg = SVector::<f64, D>::zeros();
+                        let mut a = SVector::<f64, D>::zeros();
+                        let mut l = SMatrix::<f64, D, D>::zeros();
+                        for c in 0..corners(D) {
+                            let node = &grid.nodes[base + offsets[c]];
+                            vg += node.velocity * w.n[c];
+                            a += node.acceleration * w.n[c];
+                            l += node.velocity * w.grad[c].transpose();
+                        }
+                        let i = r.start + j;
+                        if motion {
+                            *v += a * dt;
+                            *v_grid = vg;
+                            if !v.iter().all(|c| c.is_finite()) {
+                                return Some((i, Cause::NonFinite { what: "velocity" }));
+                            }
+                        }
+                        if !deformation {
+                            return None;
+                        }
+                        let mut l3 = embed(&l);
+                        let mut f_new = (Matrix3::identity() + l3 * dt) * *f;
+                        if axisymmetric {
+                            // hoop stretch r/R and hoop rate v_r / r
+                            l3[(2, 2)] = vg[0] / x[0];
+                            f_new[(2, 2)] = (x[0] + vg[0] * dt) / x_ref[0];
+                        }
+                        let det = f_new.determinant();
+                        if !det.is_finite() {
+                            return Some((
+                                i,
+                                Cause::NonFinite {
+                                    what: "deformation gradient",
+                                },
+                            ));
+                        }
+                        if det <= 0.0 {
+                            return Some((i, Cause::InvertedDeformation { det_f: det }));
+                        }
+                        match material.update(&f_new, dt, state) {
+                            Ok((sigma_new, state_new)) => {
+                                let vol_new = det * v0;
+                                let d = (l3 + l3.transpose()) * 0.5;
+                                *work = 0.5 * (*sigma * *vol + sigma_new * vol_new).dot(&d) * dt;
+                                *f = f_new;
+                                *vol = vol_new;
+                                *sigma = sigma_new;
+                                *state = state_new;
+                                None
+                            }
+                            Err(e) => Some((i, Cause::Material(e))),
+                        }
+                    },
+                )
+                .min_by_key(|(i, _)| *i);
+            if first_failure.is_none() {
+                first_failure = failure;
+            }
+        }
+        if let Some((i, cause)) = first_failure {
+            return Err(self.failure(Some(i), cause));
+        }
+        if deformation {
+            let w = &self.scratch.work;
+            self.energies.internal += fixed_sum(w.len(), 0.0, |i| w[i]);
+        }
+        Ok(())
+    }
+
+    /// x ← x + ṽ Δt, external work, domain check.
+    fn advect(&mut self) -> Result<(), SimulationError> {
+        let dt = self.dt;
+        let b = self.settings.body_force;
+        let domain = self.settings.domain;
+        let p = &mut self.particles;
+        let s = &self.scratch;
+        let failure = p
+            .position
+            .par_iter_mut()
+            .zip(s.grid_velocity.par_iter())
+            .enumerate()
+            .filter_map(|(i, (x, vg))| {
+                *x += vg * dt;
+                if !x.iter().all(|c| c.is_finite()) {
+                    return Some((i, Cause::NonFinite { what: "position" }));
+                }
+                if let Some((lo, hi)) = domain {
+                    if (0..D).any(|k| x[k] < lo[k] || x[k] > hi[k]) {
+                        return Some((
+                            i,
+                            Cause::LeftDomain {
+                                position: x.iter().cloned().collect(),
+                            },
+                        ));
+                    }
+                }
+                None
+            })
+            .min_by_key(|(i, _)| *i);
+        if let Some((i, cause)) = failure {
+            return Err(self.failure(Some(i), cause));
+        }
+        let p = &self.particles;
+        let power = |i: usize| (s.force[i] + b * p.mass[i]).dot(&s.grid_velocity[i]) * dt;
+        let ext = fixed_sum(p.len(), 0.0, power);
+        let abs = fixed_sum(p.len(), 0.0, |i| power(i).abs());
+        self.energies.external += ext;
+        self.energies.supplied += abs;
+        Ok(())
+    }
+
+    fn check_energy(&mut self) -> Result<(), SimulationError> {
+        self.energies.kinetic = self.kinetic_energy();
+        let e = self.energies;
+        let total = e.kinetic + e.internal;
+        let limit = self.settings.blowup_factor * e.supplied.max(f64::MIN_POSITIVE);
+        if !total.is_finite() {
+            return Err(self.failure(None, Cause::NonFinite { what: "energy" }));
+        }
+        if total > limit && e.supplied > 0.0 {
+            return Err(self.failure(
+                None,
+                Cause::EnergyBlowUp {
+                    energy: total,
+                    limit,
+                },
+            ));
+        }
+        Ok(())
+    }
+
+    /// Run until `t_end`, calling `each_step` after every step (for output).
+    pub fn run_until(
+        &mut self,
+        t_end: f64,
+        mut each_step: impl FnMut(&Self) -> std::io::Result<()>,
+    ) -> Result<(), RunError> {
+        while self.time < t_end - 0.5 * self.dt {
+            self.step()?;
+            each_step(self)?;
+        }
+        Ok(())
+    }
+}
+
+/// A run stops on a simulation failure or an output error.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    #[error(transparent)]
+    Simulation(#[from] SimulationError),
+    #[error("writing output: {0}")]
+    Io(#[from] std::io::Error),
+}
