@@ -21,6 +21,7 @@ pub mod plasticity;
 pub mod return_principal;
 pub mod return_reference;
 pub mod scalar;
+pub mod studies;
 pub mod tensor;
 pub mod verify;
 

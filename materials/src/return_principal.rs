@@ -54,10 +54,20 @@ pub fn solve(
     let eigen = SymmetricEigen::new(be_trial);
     let eps_trial = eigen.eigenvalues.map(|l2| 0.5 * l2.ln());
     let m_d: ElastoPlastic<DualSVec64<4>> = m.lift();
-    // First guess: radial return of the trial deviator by √(3/2) Δα0 n^tr.
-    let b_trial = eigen.eigenvalues;
-    let s_trial = b_trial.add_scalar(-b_trial.mean());
-    let shift = s_trial * (1.5f64.sqrt() * dalpha0 / s_trial.norm());
+    // First guess: radial return in logarithmic strain, where the Neo-Hooke deviator is
+    // ≈ 2G dev ε. (The trial Kirchhoff stress grows like e^{2ε} and overestimates Δα at
+    // large increments.)
+    let dev_trial = eps_trial.add_scalar(-eps_trial.mean());
+    let sqrt_3_2 = 1.5f64.sqrt();
+    let g = m.elastic.shear_modulus();
+    let tau_y0 = m.tau_y(old.alpha, 0.0, dt, old.theta);
+    let dalpha_log = (sqrt_3_2 * 2.0 * g * dev_trial.norm() - tau_y0) / (3.0 * g);
+    let dalpha0 = if dalpha_log > 0.0 {
+        dalpha_log.min(dalpha0)
+    } else {
+        dalpha0
+    };
+    let shift = dev_trial * (sqrt_3_2 * dalpha0 / dev_trial.norm());
     let y0 = SVector::<f64, 4>::new(
         eps_trial[0] - shift[0],
         eps_trial[1] - shift[1],
