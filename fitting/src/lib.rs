@@ -3,6 +3,7 @@
 
 pub mod cli;
 pub mod experiment;
+pub mod shpb;
 
 pub use experiment::{load_experiment, Experiment, ExperimentError};
 pub mod fit;

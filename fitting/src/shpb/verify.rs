@@ -1,0 +1,148 @@
+//! Verification of the SHPB processing: the round trip through a synthetic record with a
+//! known specimen curve, and the agreement of paired real tests (945 steel, pairs 1-2,
+//! 3-4, 5-6 at similar impact levels) when the shared data folder is present.
+
+use super::analysis::{analyze, ShpbAnalysis};
+use super::synthetic::{SyntheticSetup, SyntheticShpb};
+use super::ShpbError;
+use crate::experiment::ShpbExperiment;
+use materials::verify::CaseResult;
+use std::path::{Path, PathBuf};
+
+/// Errors of the processed record against the exact synthetic specimen history.
+#[derive(Debug, Clone)]
+pub struct RoundTrip {
+    pub analysis: ShpbAnalysis,
+    /// Max over the plastic loading phase of |σ − σ_exact(ε)| / σ_exact(ε), for the
+    /// 3-wave, 1-wave (back) and 2-wave (front) stress at the processed strain ε.
+    pub stress_error_3wave: f64,
+    pub stress_error_1wave: f64,
+    pub stress_error_2wave: f64,
+    /// Max |ε − ε_exact| over the loading phase, relative to the maximum exact strain.
+    pub strain_error: f64,
+    /// Mean exact strain rate over the processed plateau [1/s].
+    pub exact_plateau_rate_per_s: f64,
+}
+
+/// Process a synthetic record and compare it with the exact history.
+pub fn synthetic_round_trip(setup: &SyntheticSetup) -> Result<RoundTrip, ShpbError> {
+    let synthetic = SyntheticShpb::generate(setup);
+    let analysis = analyze(&synthetic.experiment)?;
+    let window_start = analysis.pulses.window_at_faces_s.0;
+    let exact_time = &synthetic.time_s;
+    let (peak, max_strain) =
+        synthetic.strain.iter().enumerate().fold(
+            (0, 0.0),
+            |best, (k, &e)| if e > best.1 { (k, e) } else { best },
+        );
+    let loading_end = exact_time[peak];
+    let exact_strain = |t: f64| {
+        super::signal::interpolate(exact_time, &synthetic.strain, t.clamp(0.0, loading_end))
+    };
+    let curve = setup.curve;
+    let plastic_from = 2.0 * curve.yield_stress_pa / curve.elastic_modulus_pa;
+
+    let (mut e3, mut e1, mut e2, mut strain_error) = (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
+    for (k, &t) in analysis.time_s.iter().enumerate() {
+        let tau = window_start + t - synthetic.load_start_s;
+        if tau > loading_end {
+            break;
+        }
+        let strain = analysis.strain[k];
+        strain_error = strain_error.max((strain - exact_strain(tau)).abs() / max_strain);
+        if strain >= plastic_from {
+            let exact = curve.loading_stress(strain);
+            e3 = e3.max((analysis.stress_3wave_pa[k] / exact - 1.0).abs());
+            e1 = e1.max((analysis.stress_1wave_pa[k] / exact - 1.0).abs());
+            e2 = e2.max((analysis.stress_2wave_pa[k] / exact - 1.0).abs());
+        }
+    }
+    let dt = analysis.time_s[1] - analysis.time_s[0];
+    let range = analysis.plateau.range.clone();
+    let strain_at = |k: usize| exact_strain(window_start + k as f64 * dt - synthetic.load_start_s);
+    let exact_plateau_rate_per_s =
+        (strain_at(range.end - 1) - strain_at(range.start)) / ((range.len() - 1) as f64 * dt);
+    Ok(RoundTrip {
+        analysis,
+        stress_error_3wave: e3,
+        stress_error_1wave: e1,
+        stress_error_2wave: e2,
+        strain_error,
+        exact_plateau_rate_per_s,
+    })
+}
+
+/// The experiment TOMLs of the six 945-steel records shipped in `data/`, if the shared
+/// data folder (`../shared/data` beside the repository) exists.
+pub fn steel_945_experiments() -> Option<Vec<PathBuf>> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    if !root.join("../shared/data/shpb/steel_945").is_dir() {
+        return None;
+    }
+    let folder = root.join("data/experiments/shpb_steel_945");
+    Some(
+        (1..=6)
+            .map(|i| folder.join(format!("test_0{i}.toml")))
+            .collect(),
+    )
+}
+
+/// Rows of `mpw verify` for the SHPB processing.
+pub fn verify_cases() -> Vec<CaseResult> {
+    let mut cases = Vec::new();
+    match synthetic_round_trip(&SyntheticSetup::steel_945_like(1)) {
+        Ok(r) => {
+            cases.push(CaseResult::at_most(
+                "shpb/synthetic stress 3-wave (max rel)",
+                r.stress_error_3wave,
+                0.01,
+            ));
+            cases.push(CaseResult::at_most(
+                "shpb/synthetic stress 1-wave (max rel)",
+                r.stress_error_1wave,
+                0.01,
+            ));
+            cases.push(CaseResult::at_most(
+                "shpb/synthetic stress 2-wave (max rel)",
+                r.stress_error_2wave,
+                0.01,
+            ));
+            cases.push(CaseResult::at_most(
+                "shpb/synthetic strain (max rel)",
+                r.strain_error,
+                0.01,
+            ));
+            cases.push(CaseResult::relative(
+                "shpb/synthetic plateau strain rate [1/s]",
+                r.analysis.plateau.strain_rate_3wave_per_s,
+                r.exact_plateau_rate_per_s,
+                0.01,
+            ));
+        }
+        Err(e) => {
+            eprintln!("shpb/synthetic: {e}");
+            cases.push(CaseResult::holds("shpb/synthetic round trip runs", false));
+        }
+    }
+    let Some(files) = steel_945_experiments() else {
+        eprintln!("note: ../shared/data/shpb/steel_945 not found; SHPB pair agreement skipped");
+        return cases;
+    };
+    let rates: Vec<Option<f64>> = files
+        .iter()
+        .map(|f| {
+            let exp = ShpbExperiment::load(f).map_err(|e| e.to_string())?;
+            let a = analyze(&exp).map_err(|e| e.to_string())?;
+            Ok::<f64, String>(a.plateau.strain_rate_3wave_per_s)
+        })
+        .map(|r| r.map_err(|e| eprintln!("shpb/steel945: {e}")).ok())
+        .collect();
+    for pair in [(0, 1), (2, 3), (4, 5)] {
+        let name = format!("shpb/steel945 rate test {} vs {}", pair.1 + 1, pair.0 + 1);
+        cases.push(match (rates[pair.0], rates[pair.1]) {
+            (Some(a), Some(b)) => CaseResult::relative(name, b, a, 0.10),
+            _ => CaseResult::holds(name, false),
+        });
+    }
+    cases
+}

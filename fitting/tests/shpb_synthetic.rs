@@ -1,0 +1,93 @@
+//! SHPB processing round trip: bar signals built from a known rate-independent specimen
+//! curve and a trapezoidal incident pulse (1D wave relations, specimen equilibrium),
+//! delayed to the gauges, with baseline offsets and seeded noise, must give back the
+//! exact stress-strain curve within 1 %.
+
+use fitting::shpb::synthetic::{SyntheticSetup, SyntheticShpb};
+use fitting::shpb::{analyze, synthetic_round_trip, ShpbError};
+
+#[test]
+fn stress_strain_curve_comes_back_within_one_percent() {
+    for seed in [1, 2, 3] {
+        let setup = SyntheticSetup::steel_945_like(seed);
+        let r = synthetic_round_trip(&setup).unwrap();
+        let p = &r.analysis.plateau;
+        println!(
+            "seed {seed}: stress error 3w {:.2e} 1w {:.2e} 2w {:.2e}, strain error {:.2e}, \
+             plateau rate {:.1} (exact {:.1}) 1/s, R {:.2e}",
+            r.stress_error_3wave,
+            r.stress_error_1wave,
+            r.stress_error_2wave,
+            r.strain_error,
+            p.strain_rate_3wave_per_s,
+            r.exact_plateau_rate_per_s,
+            p.equilibrium_ratio
+        );
+        assert!(
+            r.stress_error_3wave <= 0.01,
+            "3-wave stress error {}",
+            r.stress_error_3wave
+        );
+        assert!(
+            r.stress_error_1wave <= 0.01,
+            "1-wave stress error {}",
+            r.stress_error_1wave
+        );
+        assert!(
+            r.stress_error_2wave <= 0.01,
+            "2-wave stress error {}",
+            r.stress_error_2wave
+        );
+        assert!(r.strain_error <= 0.01, "strain error {}", r.strain_error);
+        let rate_error = p.strain_rate_3wave_per_s / r.exact_plateau_rate_per_s - 1.0;
+        assert!(rate_error.abs() <= 0.01, "plateau rate error {rate_error}");
+        // The synthetic specimen is in equilibrium: R is noise only (< 2 % on the plateau).
+        assert!(p.equilibrium_ratio < 0.02, "R = {}", p.equilibrium_ratio);
+        // 1-wave rate equals the 3-wave rate under equilibrium.
+        let one_wave = p.strain_rate_1wave_per_s / p.strain_rate_3wave_per_s - 1.0;
+        assert!(one_wave.abs() < 0.01, "1-wave vs 3-wave rate {one_wave}");
+    }
+}
+
+#[test]
+fn baselines_and_time_shifts_are_recovered() {
+    let setup = SyntheticSetup::steel_945_like(7);
+    let synthetic = SyntheticShpb::generate(&setup);
+    let a = analyze(&synthetic.experiment).unwrap();
+    let p = &a.pulses;
+    // Baselines within the noise band ±2 µε / √N of their true values.
+    assert!(
+        (p.baseline_incident - setup.baseline_incident).abs() < 0.2e-6,
+        "{}",
+        p.baseline_incident
+    );
+    assert!((p.baseline_transmitted - setup.baseline_transmitted).abs() < 0.2e-6);
+    // Uniform noise on ±2 µε has standard deviation 2/√3 µε.
+    let sigma = 2e-6 / 3f64.sqrt();
+    assert!(
+        (p.noise_incident / sigma - 1.0).abs() < 0.1,
+        "{}",
+        p.noise_incident
+    );
+    // d_i/c0 with c0 = √(210e9/7800) = 5188.75 m/s.
+    let c0 = (210e9_f64 / 7800.0).sqrt();
+    assert!((p.delay_incident_s - 1.020 / c0).abs() < 1e-15);
+    // The incident front reaches the gauge at 60 µs: half amplitude 7.5 µs later.
+    assert!(
+        (p.incident_arrival_s - 67.5e-6).abs() < 0.5e-6,
+        "{}",
+        p.incident_arrival_s
+    );
+    // The face window starts before the load reaches the face, and ends after the pulse.
+    assert!(p.window_at_faces_s.0 < synthetic.load_start_s);
+    assert!(p.window_at_faces_s.1 > synthetic.load_start_s + setup.pulse.duration_s());
+}
+
+#[test]
+fn a_record_without_a_pulse_is_an_error() {
+    let mut setup = SyntheticSetup::steel_945_like(3);
+    setup.pulse.amplitude = 1e-6; // under the ±2 µε noise
+    let synthetic = SyntheticShpb::generate(&setup);
+    let e = analyze(&synthetic.experiment).unwrap_err();
+    assert!(matches!(e, ShpbError::NoIncidentPulse { .. }), "{e}");
+}
