@@ -1,6 +1,7 @@
 //! Experiments, SHPB signal processing, Johnson-Cook fitting, charts, and the `mpw`
 //! subcommands (one module per subcommand in `cli`).
 
+pub mod chart;
 pub mod cli;
 pub mod experiment;
 pub mod shpb;

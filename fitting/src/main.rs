@@ -17,6 +17,8 @@ enum Command {
     Verify(fitting::cli::verify::Args),
     /// Measure the cost of material updates (ns per update).
     Bench(fitting::cli::bench::Args),
+    /// Process an SHPB record: face forces, strain rate, stress-strain curve, equilibrium.
+    Shpb(fitting::cli::shpb::Args),
 }
 
 fn main() {
@@ -25,6 +27,7 @@ fn main() {
         Command::Drive(a) => fitting::cli::drive::run(a),
         Command::Verify(a) => fitting::cli::verify::run(a),
         Command::Bench(a) => fitting::cli::bench::run(a),
+        Command::Shpb(a) => fitting::cli::shpb::run(a),
     };
     if let Err(e) = result {
         eprintln!("error: {e:#}");

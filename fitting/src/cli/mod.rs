@@ -2,4 +2,5 @@
 
 pub mod bench;
 pub mod drive;
+pub mod shpb;
 pub mod verify;
