@@ -3,7 +3,11 @@
 use clap::{Parser, Subcommand};
 
 #[derive(Parser)]
-#[command(name = "mpw", version, about = "Johnson-Cook parameters you can trust: material models, single-point driver, MPM, fitting")]
+#[command(
+    name = "mpw",
+    version,
+    about = "Johnson-Cook parameters you can trust: material models, single-point driver, MPM, fitting"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -19,6 +23,10 @@ enum Command {
     Bench(fitting::cli::bench::Args),
     /// Process an SHPB record: face forces, strain rate, stress-strain curve, equilibrium.
     Shpb(fitting::cli::shpb::Args),
+    /// Fit Johnson-Cook parameters to an experiment set (default: the synthetic 42CrMo4 set).
+    Fit(fitting::cli::fit::Args),
+    /// Write a synthetic experiment set from a stated parameter set, noise level and seed.
+    Synth(fitting::cli::synth::Args),
 }
 
 fn main() {
@@ -28,6 +36,8 @@ fn main() {
         Command::Verify(a) => fitting::cli::verify::run(a),
         Command::Bench(a) => fitting::cli::bench::run(a),
         Command::Shpb(a) => fitting::cli::shpb::run(a),
+        Command::Fit(a) => fitting::cli::fit::run(a),
+        Command::Synth(a) => fitting::cli::synth::run(a),
     };
     if let Err(e) = result {
         eprintln!("error: {e:#}");

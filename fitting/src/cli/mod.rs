@@ -2,5 +2,7 @@
 
 pub mod bench;
 pub mod drive;
+pub mod fit;
 pub mod shpb;
+pub mod synth;
 pub mod verify;

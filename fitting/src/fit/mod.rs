@@ -2,13 +2,20 @@
 //! optimizers (Nelder-Mead from argmin, Levenberg-Marquardt with the exact AD Jacobian or
 //! finite differences), staged and multi-start fits, reports and charts.
 
+pub mod charts;
+pub mod fit_set;
 pub mod lm;
 pub mod model;
 pub mod nelder_mead;
 pub mod objective;
 pub mod params;
 pub mod preheated;
+pub mod report;
+pub mod run;
+pub mod set_file;
+pub mod shpb_input;
 pub mod shpb_specimen;
 pub mod single_point;
+pub mod synth;
 pub mod tensile;
 pub mod trace;

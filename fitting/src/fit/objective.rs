@@ -32,6 +32,12 @@ pub struct Block {
     pub weight: f64,
     /// Normalization s_e = mean |measured|.
     pub scale: f64,
+    /// Names of the channels stacked in `measured` (equal lengths), e.g. `F1`, `F2`.
+    pub channels: Vec<String>,
+    /// Nominal (tensile) or mean measured (SHPB) strain rate [1/s], for reports.
+    pub rate_per_s: f64,
+    /// Test temperature [K].
+    pub temperature_k: f64,
 }
 
 impl Block {
@@ -75,6 +81,9 @@ impl Block {
             y_chart_scale,
             weight,
             scale,
+            channels: vec!["measured".into()],
+            rate_per_s: f64::NAN,
+            temperature_k: f64::NAN,
         })
     }
 

@@ -1,0 +1,81 @@
+//! `mpw fit [SET]`: fit an experiment set (default `data/experiments/default.toml`), print
+//! the report, write `report.toml`, per-experiment CSVs and charts to `--out`.
+//! `--compare` also runs Nelder-Mead, LM with the exact Jacobian and LM with finite
+//! differences on the same set and charts objective against evaluations and wall time.
+
+use crate::fit::charts;
+use crate::fit::fit_set::FitSet;
+use crate::fit::report::{table, write_files};
+use crate::fit::run::{run_fit, Optimizer};
+use anyhow::Result;
+use std::io::Write;
+use std::path::PathBuf;
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Experiment-set file.
+    #[arg(default_value = "data/experiments/default.toml")]
+    pub set: PathBuf,
+    /// Override the set's optimizer: lm, lm-fd or nelder-mead.
+    #[arg(long)]
+    pub optimizer: Option<String>,
+    /// Override the set's number of starts.
+    #[arg(long)]
+    pub starts: Option<usize>,
+    /// Output folder for report and charts.
+    #[arg(long, default_value = "out/fit")]
+    pub out: PathBuf,
+    /// Also compare Nelder-Mead, LM (exact) and LM (finite differences).
+    #[arg(long)]
+    pub compare: bool,
+}
+
+fn progress(stage: usize, start: usize, p: &crate::fit::trace::HistoryPoint) {
+    eprint!(
+        "\r  stage {} start {}: {:>5} evaluations, {:>4} Jacobians, {:>7.2} s, S = {:.6e}   ",
+        stage + 1,
+        start + 1,
+        p.evaluations,
+        p.jacobians,
+        p.wall_s,
+        p.cost
+    );
+    let _ = std::io::stderr().flush();
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let mut set = FitSet::load(&args.set)?;
+    if let Some(s) = args.starts {
+        set.starts = s.max(1);
+    }
+    let optimizer = Optimizer::parse(args.optimizer.as_deref().unwrap_or(&set.optimizer))?;
+    eprintln!(
+        "fitting {} ({} experiments)",
+        args.set.display(),
+        set.blocks.len()
+    );
+    let result = run_fit(&set, optimizer, &progress)?;
+    eprintln!();
+    print!("{}", table(&set, &result));
+    write_files(&args.out, &set, &result)?;
+    charts::fit_charts(&args.out, &set, &result)?;
+    if args.compare {
+        let mut runs = Vec::new();
+        for opt in [
+            Optimizer::NelderMead,
+            Optimizer::LmExact,
+            Optimizer::LmFiniteDifference,
+        ] {
+            eprintln!("comparison: {opt:?}");
+            let mut single = FitSet::load(&args.set)?;
+            single.starts = 1;
+            let r = run_fit(&single, opt, &progress)?;
+            eprintln!();
+            runs.push(r);
+        }
+        let summary = charts::comparison(&args.out, &runs)?;
+        print!("{summary}");
+    }
+    println!("report, CSVs and charts in {}", args.out.display());
+    Ok(())
+}

@@ -1,0 +1,177 @@
+//! Charts of a fit (PNG): each experiment against the fitted model, residuals,
+//! convergence history (log10 S against model evaluations), the correlation matrix of
+//! every stage, and the optimizer comparison (log10 S against evaluations and wall time).
+//! Line charts use `crate::chart`; the correlation matrix is a plotters heat map.
+
+use super::fit_set::FitSet;
+use super::report::sanitize;
+use super::run::FitResult;
+use crate::chart::{LineChart, Series};
+use anyhow::Result;
+use plotters::prelude::*;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// All charts of one fit into `dir`.
+pub fn fit_charts(dir: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
+    std::fs::create_dir_all(dir)?;
+    for (b, p) in set.blocks.iter().zip(&result.predictions) {
+        let per = b.measured.len() / b.channels.len();
+        let mut fit = LineChart::new(
+            format!("{}: measured and fitted", b.name),
+            &b.x_label,
+            &b.y_label,
+        );
+        let mut res = LineChart::new(
+            format!("{}: residual fitted - measured", b.name),
+            &b.x_label,
+            format!("residual {}", b.y_label),
+        );
+        for (c, ch) in b.channels.iter().enumerate() {
+            let range = c * per..(c + 1) * per;
+            let x = &b.x[range.clone()];
+            fit = fit.with(Series::scaled(
+                format!("{ch} measured"),
+                x,
+                &b.measured[range.clone()],
+                1.0,
+                b.y_chart_scale,
+            ));
+            let r: Vec<f64> = range.clone().map(|k| p[k] - b.measured[k]).collect();
+            res = res.with(Series::scaled(
+                format!("{ch} residual"),
+                x,
+                &r,
+                1.0,
+                b.y_chart_scale,
+            ));
+        }
+        fit = fit.with(Series::scaled(
+            "model",
+            &b.x[..per],
+            &p[..per],
+            1.0,
+            b.y_chart_scale,
+        ));
+        let stem = sanitize(&b.name);
+        fit.write_png(&dir.join(format!("{stem}_fit.png")))?;
+        res.write_png(&dir.join(format!("{stem}_residual.png")))?;
+    }
+    let mut conv = LineChart::new(
+        "convergence",
+        "model evaluations (real + AD passes) [-]",
+        "log10 objective S [-]",
+    );
+    for (si, s) in result.stages.iter().enumerate() {
+        for (ri, run) in s.runs.iter().enumerate() {
+            let pts: Vec<(f64, f64)> = run
+                .history
+                .iter()
+                .map(|h| ((h.evaluations + h.jacobians) as f64, h.cost.log10()))
+                .collect();
+            conv = conv.with(Series {
+                label: format!("stage {} start {}", si + 1, ri + 1),
+                points: pts,
+            });
+        }
+    }
+    conv.write_png(&dir.join("convergence.png"))?;
+    for (si, s) in result.stages.iter().enumerate() {
+        if s.free.len() > 1 {
+            correlation_png(
+                &dir.join(format!("correlation_stage{}.png", si + 1)),
+                &s.free,
+                &s.correlation,
+            )?;
+        }
+    }
+    Ok(())
+}
+
+fn correlation_png(path: &Path, names: &[String], corr: &[Vec<f64>]) -> Result<()> {
+    let n = names.len();
+    let root = BitMapBackend::new(path, (700, 640)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption("parameter correlation (from JᵀJ)", ("sans-serif", 24))
+        .margin(20)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(0..n, 0..n)?;
+    let label = |k: &usize| names.get(*k).cloned().unwrap_or_default();
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_labels(n)
+        .y_labels(n)
+        .x_label_formatter(&label)
+        .y_label_formatter(&label)
+        .draw()?;
+    for i in 0..n {
+        for j in 0..n {
+            let c = corr[i][j];
+            let v = if c.is_finite() { c } else { 0.0 };
+            let color = if v >= 0.0 {
+                RGBColor(255, (255.0 * (1.0 - v)) as u8, (255.0 * (1.0 - v)) as u8)
+            } else {
+                RGBColor((255.0 * (1.0 + v)) as u8, (255.0 * (1.0 + v)) as u8, 255)
+            };
+            chart.draw_series(std::iter::once(Rectangle::new(
+                [(j, n - 1 - i), (j + 1, n - i)],
+                color.filled(),
+            )))?;
+            chart.draw_series(std::iter::once(Text::new(
+                format!("{c:.2}"),
+                (j, n - 1 - i),
+                ("sans-serif", 20).into_font(),
+            )))?;
+        }
+    }
+    root.present()?;
+    Ok(())
+}
+
+/// Optimizer comparison charts and a summary table; `runs` are single-start fits of
+/// the same set with different optimizers.
+pub fn comparison(dir: &Path, runs: &[FitResult]) -> Result<String> {
+    let mut by_evals = LineChart::new(
+        "optimizer comparison",
+        "model evaluations (real + AD passes) [-]",
+        "log10 objective S [-]",
+    );
+    let mut by_time = LineChart::new(
+        "optimizer comparison",
+        "wall time [s]",
+        "log10 objective S [-]",
+    );
+    let mut out = String::from("\nOptimizer comparison (single start):\n");
+    let _ = writeln!(
+        out,
+        "  {:<50} {:>12} {:>8} {:>8} {:>9}",
+        "optimizer", "final S", "evals", "AD jac", "wall s"
+    );
+    for r in runs {
+        for s in &r.stages {
+            let run = &s.runs[s.best];
+            let pts = |f: &dyn Fn(&super::trace::HistoryPoint) -> f64| -> Vec<(f64, f64)> {
+                run.history.iter().map(|h| (f(h), h.cost.log10())).collect()
+            };
+            by_evals = by_evals.with(Series {
+                label: run.optimizer.clone(),
+                points: pts(&|h| (h.evaluations + h.jacobians) as f64),
+            });
+            by_time = by_time.with(Series {
+                label: run.optimizer.clone(),
+                points: pts(&|h| h.wall_s),
+            });
+            let _ = writeln!(
+                out,
+                "  {:<50} {:>12.6e} {:>8} {:>8} {:>9.2}",
+                run.optimizer, run.cost, s.evaluations, s.jacobians, run.wall_s
+            );
+        }
+    }
+    by_evals.write_png(&dir.join("compare_evaluations.png"))?;
+    by_time.write_png(&dir.join("compare_wall_time.png"))?;
+    Ok(out)
+}

@@ -1,0 +1,283 @@
+//! A loaded experiment set: the base material with its fixed overrides, the experiments
+//! as objective blocks at their model level, the free parameters and the stages.
+
+use super::model::{with_values, Material};
+use super::objective::Block;
+use super::params::FreeParam;
+use super::set_file::{resolve, ExperimentEntry, SetFile};
+use super::shpb_input::face_signals;
+use super::shpb_specimen::ShpbSpecimen;
+use super::single_point::SinglePoint;
+use super::tensile::{Tensile, Thermal};
+use crate::experiment::{load_experiment, Experiment, ShpbExperiment, TensileExperiment};
+use anyhow::{bail, Context, Result};
+use materials::material::Model;
+use materials::AnyModel;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Default thinning of an experiment's window.
+pub const DEFAULT_MAX_SAMPLES: usize = 300;
+
+/// One stage of a fit: free parameters (indices into `FitSet::params`) and experiments
+/// (indices into `FitSet::blocks`).
+#[derive(Debug, Clone)]
+pub struct Stage {
+    pub free: Vec<usize>,
+    pub experiments: Vec<usize>,
+}
+
+pub struct FitSet {
+    pub name: String,
+    pub file: PathBuf,
+    pub base: Material,
+    pub params: Vec<FreeParam>,
+    pub blocks: Vec<Block>,
+    pub stages: Vec<Stage>,
+    pub optimizer: String,
+    pub starts: usize,
+    pub seed: u64,
+    pub truth: BTreeMap<String, f64>,
+}
+
+impl FitSet {
+    pub fn load(path: &Path) -> Result<FitSet> {
+        let set = SetFile::read(path)?;
+        let folder = path.parent().unwrap_or(Path::new("."));
+        let here = |field: &str| format!("{}: field `{field}`", path.display());
+        let material_file = resolve(folder, &set.material);
+        let base = match materials::load_material(&material_file)?.model {
+            AnyModel::ElastoPlastic(m) => m,
+            _ => bail!(
+                "{}: the material must be elasto-plastic (Johnson-Cook)",
+                here("material")
+            ),
+        };
+        for name in set.fixed.keys().chain(set.truth.keys()) {
+            if base.param(name).is_none() {
+                bail!(
+                    "{}: unknown parameter `{name}`; known: {:?}",
+                    here("fixed/truth"),
+                    base.param_names()
+                );
+            }
+        }
+        let names: Vec<&str> = set.fixed.keys().map(String::as_str).collect();
+        let values: Vec<f64> = set.fixed.values().copied().collect();
+        let base = with_values(&base, &names, &values);
+        let mut params = Vec::new();
+        for p in &set.parameters {
+            if base.param(&p.name).is_none() {
+                bail!("{}: unknown parameter `{}`", here("parameter.name"), p.name);
+            }
+            params.push(
+                FreeParam::new(&p.name, p.lower, p.upper, p.start)
+                    .with_context(|| here("parameter"))?,
+            );
+        }
+        let mut blocks = Vec::new();
+        for (k, entry) in set.experiments.iter().enumerate() {
+            let file = resolve(folder, &entry.file);
+            let exp = load_experiment(&file)?;
+            let block = build_block(&base, &exp, entry).with_context(|| {
+                format!(
+                    "{}: experiment {} ({})",
+                    path.display(),
+                    k + 1,
+                    file.display()
+                )
+            })?;
+            blocks.push(block);
+        }
+        let stages = if set.stages.is_empty() {
+            vec![Stage {
+                free: (0..params.len()).collect(),
+                experiments: (0..blocks.len()).collect(),
+            }]
+        } else {
+            let mut stages = Vec::new();
+            for s in &set.stages {
+                let free = s
+                    .free
+                    .iter()
+                    .map(|n| {
+                        params.iter().position(|p| &p.name == n).ok_or_else(|| {
+                            anyhow::anyhow!("{}: `{n}` is not a [[parameter]]", here("stage.free"))
+                        })
+                    })
+                    .collect::<Result<Vec<_>>>()?;
+                let experiments = s
+                    .experiments
+                    .iter()
+                    .map(|n| {
+                        blocks
+                            .iter()
+                            .position(|b: &Block| &b.name == n)
+                            .ok_or_else(|| {
+                                anyhow::anyhow!(
+                                    "{}: no experiment named `{n}`; names: {:?}",
+                                    here("stage.experiments"),
+                                    blocks.iter().map(|b| b.name.clone()).collect::<Vec<_>>()
+                                )
+                            })
+                    })
+                    .collect::<Result<Vec<_>>>()?;
+                stages.push(Stage { free, experiments });
+            }
+            stages
+        };
+        Ok(FitSet {
+            name: set.name,
+            file: path.to_path_buf(),
+            base,
+            params,
+            blocks,
+            stages,
+            optimizer: set.optimizer,
+            starts: set.starts,
+            seed: set.seed,
+            truth: set.truth,
+        })
+    }
+}
+
+/// Every `stride`-th index of `range` so that at most `max` remain (the last kept).
+fn thin(range: std::ops::Range<usize>, max: usize) -> Vec<usize> {
+    let n = range.len();
+    let stride = n.div_ceil(max.max(1)).max(1);
+    let mut idx: Vec<usize> = range.clone().step_by(stride).collect();
+    if let Some(&last) = idx.last() {
+        if last != range.end - 1 {
+            idx.push(range.end - 1);
+        }
+    }
+    idx
+}
+
+fn build_block(base: &Material, exp: &Experiment, entry: &ExperimentEntry) -> Result<Block> {
+    if entry.level != "single-point" {
+        bail!(
+            "field `level`: \"{}\", only \"single-point\" is available",
+            entry.level
+        );
+    }
+    let max = entry.max_samples.unwrap_or(DEFAULT_MAX_SAMPLES);
+    match exp {
+        Experiment::Tensile(e) => tensile_block(base, e, entry, max),
+        Experiment::Shpb(e) => shpb_block(base, e, entry, max),
+    }
+}
+
+fn tensile_block(
+    base: &Material,
+    e: &TensileExperiment,
+    entry: &ExperimentEntry,
+    max: usize,
+) -> Result<Block> {
+    if entry.window.is_some() || entry.forces.is_some() {
+        bail!("fields `window` and `forces` are for SHPB experiments; a tensile window goes in the experiment TOML");
+    }
+    let thermal = match entry.thermal.as_deref() {
+        Some("isothermal") => Thermal::Isothermal,
+        Some("adiabatic") => Thermal::Adiabatic,
+        None if e.nominal_strain_rate_per_s > 1.0 => Thermal::Adiabatic,
+        None => Thermal::Isothermal,
+        Some(other) => {
+            bail!("field `thermal`: \"{other}\", expected \"isothermal\" or \"adiabatic\"")
+        }
+    };
+    let idx = thin(e.used_range(), max);
+    let pick = |v: &[f64]| idx.iter().map(|&i| v[i]).collect::<Vec<f64>>();
+    let (t, strain, stress) = (pick(&e.time_s), pick(&e.eng_strain), pick(&e.eng_stress_pa));
+    let model = Tensile::new(base, &t, &strain, thermal, e.temperature_k)?;
+    let mut block = Block::new(
+        &e.name,
+        Box::new(SinglePoint::new(model)),
+        stress,
+        t,
+        strain,
+        "engineering strain [-]",
+        "engineering stress [MPa]",
+        1e-6,
+        entry.weight,
+    )?;
+    block.rate_per_s = e.nominal_strain_rate_per_s;
+    block.temperature_k = e.temperature_k;
+    Ok(block)
+}
+
+fn shpb_block(
+    base: &Material,
+    e: &ShpbExperiment,
+    entry: &ExperimentEntry,
+    max: usize,
+) -> Result<Block> {
+    let Some([t0, t1]) = entry.window else {
+        bail!("field `window`: an SHPB experiment needs its specimen-face time window [t_min, t_max] in s");
+    };
+    if !(0.0 <= t0 && t0 < t1) {
+        bail!("field `window`: [{t0}, {t1}] must satisfy 0 <= t_min < t_max");
+    }
+    if entry.thermal.is_some() {
+        bail!("field `thermal`: an SHPB specimen is always adiabatic");
+    }
+    let channels = match entry.forces.as_deref() {
+        None | Some("both") => 2,
+        Some("f1") => 1,
+        Some(other) => bail!("field `forces`: \"{other}\", expected \"both\" or \"f1\""),
+    };
+    let face = face_signals(e)?;
+    let end = *face.time_s.last().unwrap();
+    if t1 > end {
+        bail!(
+            "field `window`: t_max = {t1:e} s is past the analysed record, which ends at {end:e} s after the incident pulse start"
+        );
+    }
+    let inside: Vec<usize> = (1..face.time_s.len())
+        .filter(|&k| face.time_s[k] >= t0 && face.time_s[k] <= t1)
+        .collect();
+    if inside.is_empty() {
+        bail!("field `window`: no samples in [{t0:e}, {t1:e}] s");
+    }
+    let samples: Vec<usize> = thin(inside[0]..inside[inside.len() - 1] + 1, max);
+    let model = ShpbSpecimen::new(
+        base,
+        &face.time_s,
+        &face.velocity_m_per_s,
+        &samples,
+        e.specimen.length_m,
+        e.specimen.area_m2(),
+        e.temperature_k,
+        channels,
+    )?;
+    let mut measured: Vec<f64> = samples.iter().map(|&k| face.f1_n[k]).collect();
+    let times: Vec<f64> = samples.iter().map(|&k| face.time_s[k]).collect();
+    let mut x: Vec<f64> = times.iter().map(|t| t * 1e6).collect();
+    if channels == 2 {
+        measured.extend(samples.iter().map(|&k| face.f2_n[k]));
+        x.extend(times.iter().map(|t| t * 1e6));
+    }
+    let mut block = Block::new(
+        &e.name,
+        Box::new(SinglePoint::new(model)),
+        measured,
+        times,
+        x,
+        "specimen-face time [µs]",
+        "force, compression positive [kN]",
+        1e-3,
+        entry.weight,
+    )?;
+    block.channels = if channels == 2 {
+        vec!["F1".into(), "F2".into()]
+    } else {
+        vec!["F1".into()]
+    };
+    block.temperature_k = e.temperature_k;
+    let strain_rate: Vec<f64> = samples
+        .iter()
+        .map(|&k| face.velocity_m_per_s[k] / e.specimen.length_m)
+        .collect();
+    block.rate_per_s = strain_rate.iter().sum::<f64>() / strain_rate.len() as f64;
+    Ok(block)
+}

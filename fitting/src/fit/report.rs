@@ -1,0 +1,284 @@
+//! The fit report: a terminal table and a TOML file with, per stage, the fitted
+//! parameters, standard errors, correlation matrix (from JᵀJ), objective, model
+//! evaluations, wall time and termination reason; per experiment the RMS error [SI unit
+//! and % of the mean measured magnitude]; and, for synthetic sets, the error against the
+//! truth. Also the CSV of measured against fitted values per experiment.
+
+use super::fit_set::FitSet;
+use super::run::FitResult;
+use anyhow::Result;
+use materials::material::Model;
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::Path;
+
+#[derive(Serialize)]
+struct ParamRow {
+    name: String,
+    value: f64,
+    std_error: f64,
+    truth: Option<f64>,
+    error_vs_truth_percent: Option<f64>,
+}
+
+#[derive(Serialize)]
+struct StageRow {
+    free: Vec<String>,
+    experiments: Vec<String>,
+    optimizer: String,
+    parameters: Vec<ParamRow>,
+    correlation: Vec<Vec<f64>>,
+    objective: f64,
+    samples: usize,
+    starts: usize,
+    best_start: usize,
+    model_evaluations: usize,
+    ad_jacobian_evaluations: usize,
+    iterations: usize,
+    wall_time_s: f64,
+    termination: String,
+    converged: bool,
+}
+
+#[derive(Serialize)]
+struct ExperimentRow {
+    name: String,
+    level: String,
+    rate_per_s: f64,
+    temperature_k: f64,
+    samples: usize,
+    rms_si: f64,
+    unit: String,
+    rms_percent_of_mean: f64,
+}
+
+#[derive(Serialize)]
+struct ReportFile {
+    set: String,
+    final_parameters: Vec<(String, f64)>,
+    stages: Vec<StageRow>,
+    experiments: Vec<ExperimentRow>,
+    total_wall_time_s: f64,
+}
+
+fn experiment_rows(set: &FitSet, result: &FitResult) -> Vec<ExperimentRow> {
+    set.blocks
+        .iter()
+        .zip(&result.predictions)
+        .map(|(b, p)| {
+            let rms = b.rms(p);
+            ExperimentRow {
+                name: b.name.clone(),
+                level: b.model.level().into(),
+                rate_per_s: b.rate_per_s,
+                temperature_k: b.temperature_k,
+                samples: b.measured.len(),
+                rms_si: rms,
+                unit: if b.channels.len() > 1 || b.channels[0].starts_with('F') {
+                    "N".into()
+                } else {
+                    "Pa".into()
+                },
+                rms_percent_of_mean: 100.0 * rms / b.scale,
+            }
+        })
+        .collect()
+}
+
+fn build(set: &FitSet, result: &FitResult) -> ReportFile {
+    let stages = result
+        .stages
+        .iter()
+        .map(|s| {
+            let best = &s.runs[s.best];
+            StageRow {
+                free: s.free.clone(),
+                experiments: s
+                    .experiments
+                    .iter()
+                    .map(|&e| set.blocks[e].name.clone())
+                    .collect(),
+                optimizer: best.optimizer.clone(),
+                parameters: s
+                    .free
+                    .iter()
+                    .enumerate()
+                    .map(|(k, name)| {
+                        let truth = set.truth.get(name).copied();
+                        ParamRow {
+                            name: name.clone(),
+                            value: s.values[k],
+                            std_error: s.std_errors[k],
+                            truth,
+                            error_vs_truth_percent: truth.map(|t| 100.0 * (s.values[k] - t) / t),
+                        }
+                    })
+                    .collect(),
+                correlation: s.correlation.clone(),
+                objective: s.cost,
+                samples: s.samples,
+                starts: s.runs.len(),
+                best_start: s.best,
+                model_evaluations: s.evaluations,
+                ad_jacobian_evaluations: s.jacobians,
+                iterations: s.runs.iter().map(|r| r.iterations).sum(),
+                wall_time_s: s.wall_s,
+                termination: best.termination.clone(),
+                converged: best.converged,
+            }
+        })
+        .collect();
+    let final_parameters = ["A", "B", "N", "C", "M"]
+        .iter()
+        .filter_map(|n| result.material.param(n).map(|v| (n.to_string(), v)))
+        .collect();
+    ReportFile {
+        set: set.name.clone(),
+        final_parameters,
+        stages,
+        experiments: experiment_rows(set, result),
+        total_wall_time_s: result.wall_s,
+    }
+}
+
+/// Human units for a parameter value: MPa for stresses, plain otherwise.
+fn show(name: &str, v: f64) -> String {
+    if name == "A" || name == "B" {
+        format!("{:.2} MPa", v * 1e-6)
+    } else {
+        format!("{v:.5}")
+    }
+}
+
+/// The terminal table.
+pub fn table(set: &FitSet, result: &FitResult) -> String {
+    let r = build(set, result);
+    let mut out = String::new();
+    let _ = writeln!(out, "Fit of \"{}\"", r.set);
+    for (i, s) in r.stages.iter().enumerate() {
+        let _ = writeln!(
+            out,
+            "\nStage {}: free {:?} on {:?}\n  {}; {} start(s), best {}; {} model evaluations + {} AD Jacobians; {} iterations; {:.2} s\n  termination: {} ({})\n  objective S = {:.6e} on {} samples",
+            i + 1,
+            s.free,
+            s.experiments,
+            s.optimizer,
+            s.starts,
+            s.best_start + 1,
+            s.model_evaluations,
+            s.ad_jacobian_evaluations,
+            s.iterations,
+            s.wall_time_s,
+            s.termination,
+            if s.converged { "converged" } else { "NOT converged" },
+            s.objective,
+            s.samples
+        );
+        let _ = writeln!(
+            out,
+            "  {:<6} {:>16} {:>14} {:>16} {:>10}",
+            "param", "value", "std error", "truth", "error %"
+        );
+        for p in &s.parameters {
+            let _ = writeln!(
+                out,
+                "  {:<6} {:>16} {:>14} {:>16} {:>10}",
+                p.name,
+                show(&p.name, p.value),
+                show(&p.name, p.std_error),
+                p.truth.map_or("-".into(), |t| show(&p.name, t)),
+                p.error_vs_truth_percent
+                    .map_or("-".into(), |e| format!("{e:+.3}"))
+            );
+        }
+        if s.free.len() > 1 {
+            let _ = writeln!(out, "  correlation:");
+            let _ = write!(out, "  {:<6}", "");
+            for n in &s.free {
+                let _ = write!(out, " {n:>7}");
+            }
+            let _ = writeln!(out);
+            for (k, row) in s.correlation.iter().enumerate() {
+                let _ = write!(out, "  {:<6}", s.free[k]);
+                for c in row {
+                    let _ = write!(out, " {c:>7.3}");
+                }
+                let _ = writeln!(out);
+            }
+        }
+    }
+    let _ = writeln!(out, "\nExperiments (final parameters):");
+    let _ = writeln!(
+        out,
+        "  {:<28} {:>10} {:>9} {:>8} {:>14} {:>8}",
+        "name", "rate 1/s", "T K", "samples", "RMS", "RMS %"
+    );
+    for e in &r.experiments {
+        let rms = if e.unit == "Pa" {
+            format!("{:.2} MPa", e.rms_si * 1e-6)
+        } else {
+            format!("{:.3} kN", e.rms_si * 1e-3)
+        };
+        let _ = writeln!(
+            out,
+            "  {:<28} {:>10.3e} {:>9.2} {:>8} {:>14} {:>8.3}",
+            e.name, e.rate_per_s, e.temperature_k, e.samples, rms, e.rms_percent_of_mean
+        );
+    }
+    let _ = writeln!(out, "\nTotal wall time {:.2} s", r.total_wall_time_s);
+    out
+}
+
+/// Write `report.toml` and one `<experiment>.csv` (measured and fitted) into `dir`.
+pub fn write_files(dir: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
+    std::fs::create_dir_all(dir)?;
+    std::fs::write(
+        dir.join("report.toml"),
+        toml::to_string(&build(set, result))?,
+    )?;
+    for (b, p) in set.blocks.iter().zip(&result.predictions) {
+        let per = b.measured.len() / b.channels.len();
+        let unit = if b.y_chart_scale == 1e-6 { "pa" } else { "n" };
+        let mut csv = String::new();
+        let _ = write!(
+            csv,
+            "time_s,{}",
+            if unit == "pa" {
+                "engineering_strain"
+            } else {
+                "face_time_us"
+            }
+        );
+        for ch in &b.channels {
+            let q = if unit == "pa" {
+                "engineering_stress".to_string()
+            } else {
+                format!("force_{}", ch.to_lowercase())
+            };
+            let _ = write!(csv, ",{q}_measured_{unit},{q}_fitted_{unit}");
+        }
+        csv.push('\n');
+        for k in 0..per {
+            let _ = write!(csv, "{:e},{:e}", b.times[k], b.x[k]);
+            for c in 0..b.channels.len() {
+                let _ = write!(csv, ",{:e},{:e}", b.measured[c * per + k], p[c * per + k]);
+            }
+            csv.push('\n');
+        }
+        std::fs::write(dir.join(format!("{}.csv", sanitize(&b.name))), csv)?;
+    }
+    Ok(())
+}
+
+/// A file-name-safe version of an experiment name.
+pub fn sanitize(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,206 @@
+//! Running a fit: the stages in order (each starts from the previous stage's values, the
+//! parameters not free in a stage stay fixed), multi-start within a stage (the stated
+//! start plus `starts − 1` starts drawn uniformly in u over the logistic images of the
+//! central 90 % of each bound interval, seeded), and the statistics at the optimum:
+//!
+//! Cov(p) = s² (J_pᵀ J_p)⁻¹, s² = S/(n − P), standard error √Cov_kk, correlation
+//! Cov_kl/√(Cov_kk Cov_ll), with J_p = dr/dp the exact Jacobian at the optimum.
+
+use super::fit_set::FitSet;
+use super::lm::{levenberg_marquardt, LmOptions};
+use super::model::{with_values, Material};
+use super::nelder_mead::{nelder_mead, NmOptions};
+use super::objective::{JacobianKind, Objective};
+use super::params::ParamSpace;
+use super::trace::{HistoryPoint, OptimResult};
+use anyhow::{bail, Result};
+use materials::material::Model;
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64;
+
+/// Which optimizer a stage uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Optimizer {
+    LmExact,
+    LmFiniteDifference,
+    NelderMead,
+}
+
+impl Optimizer {
+    pub fn parse(name: &str) -> Result<Self> {
+        Ok(match name {
+            "lm" => Optimizer::LmExact,
+            "lm-fd" => Optimizer::LmFiniteDifference,
+            "nelder-mead" => Optimizer::NelderMead,
+            other => bail!("optimizer \"{other}\": expected lm, lm-fd or nelder-mead"),
+        })
+    }
+}
+
+/// Result of one stage.
+#[derive(Debug, Clone)]
+pub struct StageResult {
+    pub free: Vec<String>,
+    pub experiments: Vec<usize>,
+    pub values: Vec<f64>,
+    pub std_errors: Vec<f64>,
+    pub correlation: Vec<Vec<f64>>,
+    pub cost: f64,
+    pub samples: usize,
+    /// Every start's run; `best` indexes the one kept.
+    pub runs: Vec<OptimResult>,
+    pub best: usize,
+    pub evaluations: usize,
+    pub jacobians: usize,
+    pub wall_s: f64,
+}
+
+/// Fit result: stages and the final material.
+#[derive(Debug, Clone)]
+pub struct FitResult {
+    pub stages: Vec<StageResult>,
+    pub material: Material,
+    /// Final predictions of every experiment of the set.
+    pub predictions: Vec<Vec<f64>>,
+    pub wall_s: f64,
+}
+
+fn random_start(space: &ParamSpace, rng: &mut Pcg64) -> Vec<f64> {
+    space
+        .params
+        .iter()
+        .map(|p| {
+            let x = if p.lower.is_finite() && p.upper.is_finite() {
+                p.lower + (p.upper - p.lower) * rng.gen_range(0.05..0.95)
+            } else {
+                p.start * rng.gen_range(0.5..2.0)
+            };
+            p.to_unbounded(x)
+        })
+        .collect()
+}
+
+/// Fit `set` with `optimizer`; `progress(stage, start, point)` is called on every
+/// objective evaluation.
+pub fn run_fit(
+    set: &FitSet,
+    optimizer: Optimizer,
+    progress: &dyn Fn(usize, usize, &HistoryPoint),
+) -> Result<FitResult> {
+    let t0 = std::time::Instant::now();
+    let mut material = set.base;
+    let mut stages = Vec::new();
+    let mut rng = Pcg64::seed_from_u64(set.seed);
+    for (si, stage) in set.stages.iter().enumerate() {
+        // Start values: the stated start for the first stage a parameter is free in,
+        // afterwards the current value (clamped inside its bounds).
+        let params = stage
+            .free
+            .iter()
+            .map(|&k| {
+                let mut p = set.params[k].clone();
+                let seen = set.stages[..si].iter().any(|s| s.free.contains(&k));
+                if seen {
+                    let v = material.param(&p.name).unwrap();
+                    let span = p.upper - p.lower;
+                    p.start = v.clamp(p.lower + 1e-6 * span, p.upper - 1e-6 * span);
+                }
+                p
+            })
+            .collect();
+        let space = ParamSpace::new(params)?;
+        let blocks = stage.experiments.iter().map(|&e| &set.blocks[e]).collect();
+        let objective = Objective::new(material, blocks, space.clone())?;
+        let mut runs = Vec::new();
+        for start in 0..set.starts {
+            let u0 = if start == 0 {
+                space.to_unbounded(&space.starts())
+            } else {
+                random_start(&space, &mut rng)
+            };
+            let report = |p: &HistoryPoint| progress(si, start, p);
+            let run = match optimizer {
+                Optimizer::LmExact => levenberg_marquardt(
+                    &objective,
+                    &u0,
+                    JacobianKind::Exact,
+                    &LmOptions::default(),
+                    &report,
+                ),
+                Optimizer::LmFiniteDifference => levenberg_marquardt(
+                    &objective,
+                    &u0,
+                    JacobianKind::FiniteDifference,
+                    &LmOptions::default(),
+                    &report,
+                ),
+                Optimizer::NelderMead => {
+                    nelder_mead(&objective, &u0, &NmOptions::default(), &report)
+                }
+            };
+            match run {
+                Ok(r) => runs.push(r),
+                Err(e) if start > 0 => eprintln!("stage {}: start {start} failed: {e:#}", si + 1),
+                Err(e) => return Err(e),
+            }
+        }
+        let best = (0..runs.len())
+            .min_by(|&a, &b| runs[a].cost.total_cmp(&runs[b].cost))
+            .unwrap();
+        let u = runs[best].u.clone();
+        let values = space.to_bounded(&u);
+        let (std_errors, correlation) = statistics(&objective, &u)?;
+        let (evaluations, jacobians) = objective.counts();
+        let names: Vec<String> = space.names().iter().map(|s| s.to_string()).collect();
+        material = with_values(&material, &space.names(), &values);
+        stages.push(StageResult {
+            free: names,
+            experiments: stage.experiments.clone(),
+            values,
+            std_errors,
+            correlation,
+            cost: runs[best].cost,
+            samples: objective.len(),
+            best,
+            evaluations,
+            jacobians,
+            wall_s: runs.iter().map(|r| r.wall_s).sum(),
+            runs,
+        });
+    }
+    let all = Objective::new(
+        material,
+        set.blocks.iter().collect(),
+        ParamSpace::new(vec![set.params[0].clone()])?,
+    )?;
+    let predictions = all.predictions(&[material.param(&set.params[0].name).unwrap()])?;
+    Ok(FitResult {
+        stages,
+        material,
+        predictions,
+        wall_s: t0.elapsed().as_secs_f64(),
+    })
+}
+
+/// Standard errors and correlation matrix at `u` from the exact Jacobian in p.
+pub fn statistics(objective: &Objective, u: &[f64]) -> Result<(Vec<f64>, Vec<Vec<f64>>)> {
+    let (r, ju) = objective.residuals_and_jacobian(u, JacobianKind::Exact)?;
+    let dpdu = objective.space.derivatives(u);
+    let p = dpdu.len();
+    let mut jp = ju;
+    for k in 0..p {
+        jp.column_mut(k).scale_mut(1.0 / dpdu[k]);
+    }
+    let n = r.len();
+    let s2 = r.iter().map(|x| x * x).sum::<f64>() / (n.saturating_sub(p).max(1)) as f64;
+    let jtj = jp.transpose() * &jp;
+    let Some(inv) = jtj.clone().try_inverse() else {
+        return Ok((vec![f64::INFINITY; p], vec![vec![f64::NAN; p]; p]));
+    };
+    let cov = inv * s2;
+    let se: Vec<f64> = (0..p).map(|k| cov[(k, k)].max(0.0).sqrt()).collect();
+    let corr = (0..p)
+        .map(|i| (0..p).map(|j| cov[(i, j)] / (se[i] * se[j])).collect())
+        .collect();
+    Ok((se, corr))
+}

@@ -1,0 +1,131 @@
+//! Experiment-set files (TOML): which experiments, at which model level, with which
+//! weights and windows, which parameters are free (bounds, start) and which fixed, and the
+//! stages of a staged fit.
+//!
+//! ```toml
+//! name = "42CrMo4 QT660, synthetic"
+//! material = "../materials/42crmo4_qt660.toml"   # base parameter set (fixed values)
+//! optimizer = "lm"            # "lm" (exact AD Jacobian) | "lm-fd" | "nelder-mead"
+//! starts = 3                  # multi-start: the given start plus random starts
+//! seed = 1                    # of the random starts
+//! [fixed]                     # optional overrides of the base set (SI)
+//! gamma_tq = 0.9
+//! [truth]                     # optional: known parameters (synthetic data), reported
+//! A = 801e6
+//! [[parameter]]               # free parameters: SI bounds and start
+//! name = "A"
+//! lower = 300e6
+//! upper = 2000e6
+//! start = 600e6
+//! [[experiment]]
+//! file = "qs_tension.toml"    # an experiment TOML (fitting::experiment), relative to this file
+//! weight = 1.0                # optional, default 1
+//! level = "single-point"      # model level (only "single-point" so far)
+//! thermal = "isothermal"      # tensile: "isothermal" | "adiabatic" (default: adiabatic above 1 1/s)
+//! window = [15e-6, 115e-6]    # shpb: window [s] after the incident pulse start at the faces (required)
+//! forces = "both"             # shpb: "both" (F1 and F2) | "f1"
+//! max_samples = 300           # optional: thin the window to at most this many samples
+//! [[stage]]                   # optional; default: one stage, all parameters, all experiments
+//! free = ["A", "B", "N"]
+//! experiments = ["qs_tension"]   # experiment names (the TOML file stems)
+//! ```
+//! Paths are relative to the set file's folder.
+
+use anyhow::{bail, Context, Result};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SetFile {
+    pub name: String,
+    pub material: String,
+    #[serde(default = "default_optimizer")]
+    pub optimizer: String,
+    #[serde(default = "one")]
+    pub starts: usize,
+    #[serde(default)]
+    pub seed: u64,
+    #[serde(default)]
+    pub fixed: BTreeMap<String, f64>,
+    #[serde(default)]
+    pub truth: BTreeMap<String, f64>,
+    #[serde(rename = "parameter")]
+    pub parameters: Vec<ParameterEntry>,
+    #[serde(rename = "experiment")]
+    pub experiments: Vec<ExperimentEntry>,
+    #[serde(default, rename = "stage")]
+    pub stages: Vec<StageEntry>,
+}
+
+fn default_optimizer() -> String {
+    "lm".into()
+}
+
+fn one() -> usize {
+    1
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParameterEntry {
+    pub name: String,
+    pub lower: f64,
+    pub upper: f64,
+    pub start: f64,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExperimentEntry {
+    pub file: String,
+    #[serde(default = "unit_weight")]
+    pub weight: f64,
+    #[serde(default = "single_point")]
+    pub level: String,
+    pub thermal: Option<String>,
+    pub window: Option<[f64; 2]>,
+    pub forces: Option<String>,
+    pub max_samples: Option<usize>,
+}
+
+fn unit_weight() -> f64 {
+    1.0
+}
+
+fn single_point() -> String {
+    "single-point".into()
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StageEntry {
+    pub free: Vec<String>,
+    pub experiments: Vec<String>,
+}
+
+impl SetFile {
+    pub fn read(path: &Path) -> Result<SetFile> {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("{}: cannot read", path.display()))?;
+        let set: SetFile =
+            toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        if !["lm", "lm-fd", "nelder-mead"].contains(&set.optimizer.as_str()) {
+            bail!(
+                "{}: field `optimizer`: \"{}\", expected \"lm\", \"lm-fd\" or \"nelder-mead\"",
+                path.display(),
+                set.optimizer
+            );
+        }
+        if set.starts == 0 {
+            bail!("{}: field `starts`: must be at least 1", path.display());
+        }
+        Ok(set)
+    }
+}
+
+/// Resolve `path` (relative to the set file's `folder`).
+pub fn resolve(folder: &Path, path: &str) -> PathBuf {
+    folder.join(path)
+}
