@@ -253,3 +253,55 @@ fn real_304l_file_reads_as_it_is() {
     assert_eq!(e.eng_stress_pa[used.end - 1], best);
     assert_eq!(used.start, 0);
 }
+
+/// Every experiment TOML shipped in `data/experiments` loads; a tensile TOML states the
+/// nominal rate and temperature of its CSV's `#` header (read here independently), an
+/// SHPB record has 20 000 samples of 32 ns (as the data README states). The measured mean
+/// engineering strain rate up to the maximum stress is printed against the nominal one.
+#[test]
+fn shipped_experiment_files_load() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    if !root.join("../shared/data").is_dir() {
+        println!("skipped: ../shared/data not found");
+        return;
+    }
+    let header_value = |text: &str, key: &str| -> f64 {
+        let line = text
+            .lines()
+            .find(|l| l.starts_with('#') && l.contains(key))
+            .unwrap();
+        line.rsplit(':').next().unwrap().trim().parse().unwrap()
+    };
+    let mut count = 0;
+    for folder in [
+        "data/experiments/tension_304l",
+        "data/experiments/shpb_steel_945",
+    ] {
+        for entry in std::fs::read_dir(root.join(folder)).unwrap() {
+            let path = entry.unwrap().path();
+            match load_experiment(&path).unwrap_or_else(|e| panic!("{e}")) {
+                Experiment::Tensile(e) => {
+                    let text = std::fs::read_to_string(&e.data_file).unwrap();
+                    let nominal = header_value(&text, "nominal_engineering_strain_rate_per_s");
+                    assert_eq!(e.nominal_strain_rate_per_s, nominal, "{}", e.name);
+                    assert_eq!(e.temperature_k, header_value(&text, "temperature_K"));
+                    let r = e.used_range();
+                    let (a, b) = (r.start, r.end - 1);
+                    let rate = (e.eng_strain[b] - e.eng_strain[a]) / (e.time_s[b] - e.time_s[a]);
+                    println!(
+                        "{}: measured mean rate {rate:.3e} 1/s = {:.2} x nominal",
+                        e.name,
+                        rate / nominal
+                    );
+                }
+                Experiment::Shpb(e) => {
+                    assert_eq!(e.time_s.len(), 20_000);
+                    let dt = (e.time_s[19_999] - e.time_s[0]) / 19_999.0;
+                    assert!((dt / 32e-9 - 1.0).abs() < 1e-3, "{dt}");
+                }
+            }
+            count += 1;
+        }
+    }
+    assert_eq!(count, 10);
+}
