@@ -1,6 +1,10 @@
 //! Johnson-Cook parameter identification: model levels for experiments, the objective,
 //! optimizers (Nelder-Mead from argmin, Levenberg-Marquardt with the exact AD Jacobian or
 //! finite differences), staged and multi-start fits, reports and charts.
+//!
+//! `verify_cases` gives the `mpw verify` rows of this module.
+
+pub use verify::verify_cases;
 
 pub mod charts;
 pub mod fit_set;
@@ -19,3 +23,4 @@ pub mod single_point;
 pub mod synth;
 pub mod tensile;
 pub mod trace;
+pub mod verify;

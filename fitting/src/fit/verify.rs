@@ -1,0 +1,86 @@
+//! Verification rows of the fitting module (`mpw verify`): recovery of the truth from the
+//! shipped synthetic set (A, B within 2 %, N within 5 %, C, M within 10 %), and the exact
+//! AD Jacobian of the objective against central finite differences.
+
+use super::fit_set::FitSet;
+use super::objective::{JacobianKind, Objective};
+use super::params::ParamSpace;
+use super::run::{run_fit, Optimizer};
+use anyhow::Result;
+use materials::material::Model;
+use materials::verify::CaseResult;
+use std::path::Path;
+
+/// Tolerance of each parameter's recovery (relative).
+pub const RECOVERY_TOLERANCE: [(&str, f64); 5] = [
+    ("A", 0.02),
+    ("B", 0.02),
+    ("N", 0.05),
+    ("C", 0.10),
+    ("M", 0.10),
+];
+
+/// The shipped default experiment set.
+pub fn default_set_path() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/experiments/default.toml")
+}
+
+/// Fit the default set with LM (exact Jacobian) and compare with its `[truth]`.
+pub fn recovery_cases() -> Result<Vec<CaseResult>> {
+    let set = FitSet::load(&default_set_path())?;
+    let result = run_fit(&set, Optimizer::LmExact, &|_, _, _| {})?;
+    let mut rows = Vec::new();
+    for (name, tol) in RECOVERY_TOLERANCE {
+        rows.push(CaseResult::relative(
+            format!("fit/synthetic-recovery-{name}"),
+            result.material.param(name).unwrap(),
+            set.truth[name],
+            tol,
+        ));
+    }
+    Ok(rows)
+}
+
+/// Largest relative difference between the exact Jacobian dr/du and a central finite
+/// difference (step 1e-5 in u), over columns, normalized by each column's norm.
+pub fn jacobian_vs_fd() -> Result<f64> {
+    let set = FitSet::load(&default_set_path())?;
+    let space = ParamSpace::new(set.params.clone())?;
+    let objective = Objective::new(set.base, set.blocks.iter().collect(), space.clone())?;
+    let u = space.to_unbounded(&space.starts());
+    let (_, jac) = objective.residuals_and_jacobian(&u, JacobianKind::Exact)?;
+    let h = 1e-5;
+    let mut worst: f64 = 0.0;
+    for k in 0..u.len() {
+        let (mut up, mut um) = (u.clone(), u.clone());
+        up[k] += h;
+        um[k] -= h;
+        let (rp, rm) = (objective.residuals(&up)?, objective.residuals(&um)?);
+        let col = jac.column(k);
+        let diff: f64 = (0..rp.len())
+            .map(|i| ((rp[i] - rm[i]) / (2.0 * h) - col[i]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        worst = worst.max(diff / col.norm());
+    }
+    Ok(worst)
+}
+
+/// All fitting rows for `mpw verify`.
+pub fn verify_cases() -> Vec<CaseResult> {
+    let mut rows = match recovery_cases() {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("fit/synthetic-recovery: {e:#}");
+            vec![CaseResult::holds("fit/synthetic-recovery", false)]
+        }
+    };
+    rows.push(match jacobian_vs_fd() {
+        Ok(d) => CaseResult::at_most("fit/jacobian-ad-vs-central-fd", d, 1e-5),
+        Err(e) => {
+            eprintln!("fit/jacobian-ad-vs-central-fd: {e:#}");
+            CaseResult::holds("fit/jacobian-ad-vs-central-fd", false)
+        }
+    });
+    rows
+}
