@@ -28,7 +28,14 @@ pub struct Args {
     /// Also compare Nelder-Mead, LM (exact) and LM (finite differences).
     #[arg(long)]
     pub compare: bool,
+    /// Validation run: fail unless every stage converged and every experiment's RMS
+    /// error is at most 5 % of its mean measured magnitude.
+    #[arg(long)]
+    pub validate: bool,
 }
+
+/// Largest RMS error of a validated fit, as a fraction of the mean measured magnitude.
+pub const VALIDATION_RMS: f64 = 0.05;
 
 fn progress(stage: usize, start: usize, p: &crate::fit::trace::HistoryPoint) {
     eprint!(
@@ -77,5 +84,36 @@ pub fn run(args: Args) -> Result<()> {
         print!("{summary}");
     }
     println!("report, CSVs and charts in {}", args.out.display());
+    if args.validate {
+        let mut failures = Vec::new();
+        for (i, s) in result.stages.iter().enumerate() {
+            if !s.runs[s.best].converged {
+                failures.push(format!(
+                    "stage {} did not converge: {}",
+                    i + 1,
+                    s.runs[s.best].termination
+                ));
+            }
+        }
+        for (b, p) in set.blocks.iter().zip(&result.predictions) {
+            let rel = b.rms(p) / b.scale;
+            if !(rel <= VALIDATION_RMS) {
+                failures.push(format!(
+                    "{}: RMS {:.2} % of the mean measured value exceeds {:.0} %",
+                    b.name,
+                    100.0 * rel,
+                    100.0 * VALIDATION_RMS
+                ));
+            }
+        }
+        if !failures.is_empty() {
+            anyhow::bail!(
+                "validation of {} failed:\n  {}",
+                args.set.display(),
+                failures.join("\n  ")
+            );
+        }
+        println!("validation passed");
+    }
     Ok(())
 }
