@@ -1,0 +1,215 @@
+//! Penalty contact benchmarks (sections 9.4 and 9.5).
+//!
+//! - Libra: an elastic cube (edge 1 m, E = 1 kPa, ν = 0.45, ρ = 100 kg/m³) rests on a
+//!   frictionless rigid plane under b = −10 m/s² ez, α_d = 20 1/s, Δt = 1 ms, 3 s. The
+//!   plane must carry ρ g V = 1000 N (eq. 9.8); the penetration falls as κ_pen grows.
+//! - Inclined plate: a cube (edge 0.5 m, E = 10 kPa, ν = 0.3, ρ = 100 kg/m³) on a plate
+//!   that turns about the x axis to γ within 2 s, κ_pen = 1000 kg/s², α_d = 20 1/s,
+//!   Δt = 1 ms, 7 s. It slides iff μ < tan γ (eq. 9.9), and the tangential/normal ratio of
+//!   the plate force never exceeds μ (eq. 9.3).
+
+use crate::discretize::{fill, Shape};
+use crate::kinematics::Kinematics;
+use crate::rigid::{RigidBody, Rotation, Table};
+use crate::solver::{Scheme, Settings, Solver};
+use materials::NeoHooke;
+use nalgebra::{SVector, Vector3};
+use std::sync::Arc;
+
+#[derive(Debug, Clone)]
+pub struct LibraResult {
+    pub penalty: f64,
+    /// Mean normal contact force on the plane over the last 0.5 s [N].
+    pub force: f64,
+    /// Largest penetration depth of any point at the end, over the edge length [-].
+    pub penetration: f64,
+}
+
+/// The libra with `per_edge` points along each cube edge (2 per cell).
+pub fn libra(penalty: f64, per_edge: usize) -> Result<LibraResult, crate::SimulationError> {
+    let s = 1.0 / per_edge as f64;
+    let mut settings = Settings::<3>::new(Kinematics::Solid, 2.0 * s);
+    settings.dt = Some(1e-3);
+    settings.damping = 20.0;
+    settings.body_force = Vector3::new(0.0, 0.0, -10.0);
+    let mut solver = Solver::new(settings);
+    let cube = fill(
+        &Shape::Box {
+            min: Vector3::zeros(),
+            max: Vector3::repeat(1.0),
+        },
+        Vector3::repeat(s),
+        Vector3::zeros(),
+        Kinematics::Solid,
+    );
+    solver.add_body(
+        "cube",
+        Arc::new(NeoHooke::new(1e3, 0.45, 100.0)),
+        &cube,
+        SVector::zeros(),
+    );
+    solver.add_rigid_body(RigidBody::half_space(
+        "plane",
+        Vector3::zeros(),
+        Vector3::z(),
+        penalty,
+        0.0,
+    ));
+    solver.initialize();
+    let (mut sum, mut count) = (0.0, 0);
+    while solver.time < 3.0 - 5e-4 {
+        solver.step()?;
+        if solver.time > 2.5 {
+            sum += -solver.rigid[0].contact.force[2];
+            count += 1;
+        }
+    }
+    let depth = solver
+        .particles
+        .position
+        .iter()
+        .map(|x| -x[2])
+        .fold(0.0, f64::max);
+    Ok(LibraResult {
+        penalty,
+        force: sum / count as f64,
+        penetration: depth,
+    })
+}
+
+#[derive(Debug, Clone)]
+pub struct InclineResult {
+    pub gamma_deg: f64,
+    pub mu: f64,
+    /// Slip along the plate of the bottom-face point that moved least [m].
+    pub slip: f64,
+    /// Largest |F_t| / F_n of the plate force while the cube weighs on the plate.
+    pub max_ratio: f64,
+}
+
+/// The inclined plate with `per_edge` points along a cube edge, run to `t_end` [s].
+pub fn inclined_plate(
+    scheme: Scheme,
+    gamma_deg: f64,
+    mu: f64,
+    per_edge: usize,
+    t_end: f64,
+) -> Result<InclineResult, crate::SimulationError> {
+    let edge = 0.5;
+    let s = edge / per_edge as f64;
+    let mut settings = Settings::<3>::new(Kinematics::Solid, 0.2);
+    settings.scheme = scheme;
+    settings.dt = Some(1e-3);
+    settings.damping = 20.0;
+    settings.body_force = Vector3::new(0.0, 0.0, -10.0);
+    let mut solver = Solver::new(settings);
+    let cube = fill(
+        &Shape::Box {
+            min: Vector3::new(-0.2, -0.2, 0.0),
+            max: Vector3::new(0.3, 0.3, edge),
+        },
+        Vector3::repeat(s),
+        Vector3::zeros(),
+        Kinematics::Solid,
+    );
+    solver.add_body(
+        "cube",
+        Arc::new(NeoHooke::new(1e4, 0.3, 100.0)),
+        &cube,
+        SVector::zeros(),
+    );
+    let mut plate = RigidBody::boxed(
+        "plate",
+        Vector3::new(-1.0, -2.0, -0.1),
+        Vector3::new(1.0, 2.0, 0.0),
+        1e3,
+        mu,
+    );
+    let gamma = gamma_deg.to_radians();
+    plate.motion.rotation = Some(Rotation {
+        center: Vector3::zeros(),
+        axis: Vector3::x_axis(),
+        angle: Table {
+            knots: vec![(0.0, 0.0), (2.0, gamma)],
+        },
+    });
+    solver.add_rigid_body(plate);
+    let z0 = solver
+        .particles
+        .position
+        .iter()
+        .map(|x| x[2])
+        .fold(f64::INFINITY, f64::min);
+    let bottom: Vec<usize> = (0..solver.particles.len())
+        .filter(|&i| solver.particles.position[i][2] < z0 + 0.5 * s)
+        .collect();
+    solver.initialize();
+    let weight = solver.particles.mass.iter().sum::<f64>() * 10.0;
+    let start: Vec<Vector3<f64>> = bottom
+        .iter()
+        .map(|&i| solver.particles.position[i])
+        .collect();
+    let mut max_ratio: f64 = 0.0;
+    while solver.time < t_end - 5e-4 {
+        solver.step()?;
+        // the contact forces of a step act at the pose of its start
+        let pose = solver.rigid[0].body.motion.pose(solver.time - solver.dt);
+        let n = pose.rotation * Vector3::z();
+        let f = -solver.rigid[0].contact.force; // force of the plate on the cube
+        let f_n = f.dot(&n);
+        if f_n > 0.1 * weight {
+            max_ratio = max_ratio.max((f - n * f_n).norm() / f_n);
+        }
+    }
+    let pose = solver.rigid[0].body.motion.pose(solver.time);
+    // slip along the plate's y direction (plate frame) of the bottom point that moved
+    // least: all bottom points slip when the cube slides, the pivot edge stays when it tips
+    let slip = bottom
+        .iter()
+        .zip(&start)
+        .map(|(&i, x0)| (pose.to_body(&solver.particles.position[i]) - x0)[1].abs())
+        .fold(f64::INFINITY, f64::min);
+    Ok(InclineResult {
+        gamma_deg,
+        mu,
+        slip,
+        max_ratio,
+    })
+}
+
+/// Slip [m] above which the cube counts as sliding (50× the elastic penalty deflection).
+pub const SLIDING_SLIP: f64 = 0.02;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn libra_carries_its_weight_and_penetration_falls_with_stiffness() {
+        let soft = libra(1e2, 8).unwrap();
+        let stiff = libra(1e3, 8).unwrap();
+        eprintln!("{soft:?}\n{stiff:?}");
+        assert!(
+            (stiff.force / 1000.0 - 1.0).abs() < 0.02,
+            "force {}",
+            stiff.force
+        );
+        assert!(
+            (soft.force / 1000.0 - 1.0).abs() < 0.02,
+            "force {}",
+            soft.force
+        );
+        assert!(stiff.penetration < soft.penetration);
+    }
+
+    #[test]
+    fn cube_slides_exactly_when_mu_is_below_tan_gamma() {
+        for (gamma, mu) in [(10.0, 0.1), (10.0, 0.2), (45.0, 0.4), (45.0, 1.8)] {
+            let r = inclined_plate(Scheme::Usl, gamma, mu, 5, 5.0).unwrap();
+            eprintln!("{r:?}");
+            let slides = mu < f64::tan(f64::to_radians(gamma));
+            assert_eq!(r.slip > SLIDING_SLIP, slides, "{r:?}");
+            assert!(r.max_ratio <= mu * (1.0 + 1e-9), "{r:?}");
+        }
+    }
+}
