@@ -4,6 +4,7 @@
 pub mod chart;
 pub mod cli;
 pub mod experiment;
+pub mod heatmap;
 pub mod shpb;
 
 pub use experiment::{load_experiment, Experiment, ExperimentError};

@@ -7,6 +7,7 @@
 
 pub mod ad;
 pub mod any_model;
+pub mod conformance;
 pub mod driver;
 pub mod elastic;
 pub mod error;

@@ -67,7 +67,7 @@ impl fmt::Display for CaseResult {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "{:<44} {:>14.6e} {:>14.6e} {:>12} {}",
+            "{:<60} {:>14.6e} {:>14.6e} {:>12} {}",
             self.name,
             self.measured,
             self.reference,

@@ -1,8 +1,111 @@
-//! `mpw verify` (being written).
+//! `mpw verify`: every verification case of the project, one table row each (case,
+//! measured, reference, tolerance, pass/fail); exits non-zero if any case fails.
+//! `--charts DIR` also draws the figure 4.5 reproduction and the iso-error maps.
+
+use crate::chart::{LineChart, Series};
+use crate::heatmap::HeatMap;
+use anyhow::{bail, Result};
+use materials::studies::{self, figure_4_5, iso_error};
+use materials::{load_material, AnyModel, ElastoPlastic};
+use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
-pub struct Args {}
+pub struct Args {
+    /// Full-size cases (finer iso-error map, full-size MPM benchmarks).
+    #[arg(long)]
+    pub full: bool,
+    /// Write the verification charts (PNG) into this folder.
+    #[arg(long)]
+    pub charts: Option<PathBuf>,
+    /// Material parameter folder.
+    #[arg(long, default_value = "data/materials")]
+    pub materials: PathBuf,
+}
 
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("mpw verify is not implemented yet")
+fn elasto_plastic(path: &Path) -> Result<ElastoPlastic> {
+    match load_material(path)?.model {
+        AnyModel::ElastoPlastic(m) => Ok(m),
+        AnyModel::NeoHooke(_) => bail!("{}: expected an elasto-plastic model", path.display()),
+    }
+}
+
+/// Thesis figure 4.5: σ_xx against engineering strain for the four rate/temperature pairs.
+fn figure_4_5_chart(materials: &Path, out: &Path) -> Result<()> {
+    let m = elasto_plastic(&materials.join("aisi_4340.toml"))?;
+    let mut chart = LineChart::new(
+        "Johnson-Cook AISI 4340, uniaxial tension then hold (thesis fig. 4.5)",
+        "engineering strain ε_xx [-]",
+        "Cauchy stress σ_xx [MPa]",
+    );
+    for c in figure_4_5::run(&m)? {
+        // The hold shows as the vertical drop at ε_xx = 0.6.
+        let x: Vec<f64> = c.records.iter().map(|r| r.f[(0, 0)] - 1.0).collect();
+        let y: Vec<f64> = c.records.iter().map(|r| r.sigma[(0, 0)]).collect();
+        chart = chart.with(Series::scaled(
+            format!("ε̇ = {} 1/s, θ = {} K", c.rate, c.theta),
+            &x,
+            &y,
+            1.0,
+            1e-6,
+        ));
+    }
+    chart.write_png(&out.join("figure_4_5.png"))
+}
+
+fn iso_error_charts(materials: &Path, out: &Path) -> Result<()> {
+    let multiples: Vec<f64> = (0..=20).map(|k| 5.0 * k as f64).collect();
+    let mut j2 = elasto_plastic(&materials.join("al6061_t6.toml"))?;
+    j2.flow = materials::FlowStress::Voce(materials::flow_stress::Voce {
+        tau0: 300e6,
+        tau_inf: 450e6,
+        eta: 12.0,
+        h: 1e8,
+    });
+    let jc = elasto_plastic(&materials.join("42crmo4_qt660.toml"))?;
+    for (name, m) in [("j2", j2), ("johnson_cook", jc)] {
+        let map = iso_error::run(&m, &multiples);
+        HeatMap {
+            title: format!(
+                "{name}: one-step stress error vs {} sub-steps",
+                iso_error::SUBSTEPS
+            ),
+            x_label: "increment along the loading direction n1 [yield strains]".into(),
+            y_label: "increment along the tangential direction n2 [yield strains]".into(),
+            x: map.a.clone(),
+            y: map.b.clone(),
+            value: map.error.clone(),
+            log10_range: (-4.0, 0.0),
+        }
+        .write_png(&out.join(format!("iso_error_{name}.png")))?;
+    }
+    Ok(())
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let mut cases = studies::verify_cases(&args.materials, args.full)?;
+    cases.extend(crate::shpb::verify_cases());
+    println!(
+        "{:<60} {:>14} {:>14} {:>12} result",
+        "case", "measured", "reference", "tolerance"
+    );
+    for c in &cases {
+        println!("{c}");
+    }
+    if let Some(dir) = &args.charts {
+        std::fs::create_dir_all(dir)?;
+        figure_4_5_chart(&args.materials, dir)?;
+        iso_error_charts(&args.materials, dir)?;
+        println!("charts written to {}", dir.display());
+    }
+    let failed = cases.iter().filter(|c| !c.passed).count();
+    println!(
+        "{} cases, {} passed, {} failed",
+        cases.len(),
+        cases.len() - failed,
+        failed
+    );
+    if failed > 0 {
+        bail!("{failed} verification case(s) failed");
+    }
+    Ok(())
 }

@@ -89,31 +89,16 @@ pub fn run<D: Scalar, M: Model<D>>(
         }
     };
 
-    let t0 = path.times[0];
     let mut f = M3::<f64>::identity();
-    kinematic_f(t0, &mut f);
     let mut state = model.initial_state();
-    set_temperature(&mut state, t0);
-    let dt0 = path.times[1] - t0;
-    let (sigma0, _) =
-        model
-            .update(&f.map(c), dt0, &state)
-            .map_err(|source| DriverError::Material {
-                step: 0,
-                time: t0,
-                source,
-            })?;
-    let mut records = vec![Record {
-        time: t0,
-        f: f.map(c),
-        sigma: sigma0,
-        state,
-    }];
+    let mut records = Vec::with_capacity(path.times.len());
     let mut du_last = vec![0.0; unknown.len()];
 
-    for step in 1..path.times.len() {
+    // Step 0 solves the stress controls at the initial time too (e.g. free thermal
+    // expansion at a prescribed temperature); its time step is that of step 1.
+    for step in 0..path.times.len() {
         let t = path.times[step];
-        let dt = t - path.times[step - 1];
+        let dt = path.times[step.max(1)] - path.times[step.max(1) - 1];
         set_temperature(&mut state, t);
         let state_re = state.re();
         let material = |source| DriverError::Material {
