@@ -46,7 +46,7 @@ impl Plateau {
         let smooth = moving_average(rate_3wave, ((SMOOTHING_S / dt).round() as usize).max(1));
         let max = smooth.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
         let mut loading: Vec<f64> = smooth.iter().cloned().filter(|&r| r >= 0.5 * max).collect();
-        if !(max > 0.0) || loading.len() < 2 {
+        if max.is_nan() || max <= 0.0 || loading.len() < 2 {
             return Err(no_plateau());
         }
         loading.sort_by(f64::total_cmp);
