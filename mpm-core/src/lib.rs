@@ -32,4 +32,7 @@ pub use particles::Particles;
 pub use rigid::RigidBody;
 pub use solver::{Energies, RunError, Scheme, Settings, Solver};
 pub use timestep::TimeStep;
+pub mod output;
+pub mod run;
+pub mod scene;
 pub mod verify;

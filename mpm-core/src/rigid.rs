@@ -259,6 +259,29 @@ pub fn convex_from_polygon(
     }
 }
 
+/// The same body typed for dimension `E` (a scene knows its dimension only at run time;
+/// panics unless D = E).
+pub fn recast<const D: usize, const E: usize>(body: RigidBody<D>) -> RigidBody<E> {
+    assert_eq!(D, E, "rigid body of dimension {D} used in a {E}D scene");
+    let v = |x: &SVector<f64, D>| SVector::<f64, E>::from_column_slice(x.as_slice());
+    RigidBody {
+        name: body.name,
+        planes: body
+            .planes
+            .iter()
+            .map(|p| Plane {
+                point: v(&p.point),
+                normal: v(&p.normal),
+            })
+            .collect(),
+        motion: Motion::default(),
+        penalty: body.penalty,
+        friction: body.friction,
+        search_interval: body.search_interval,
+        bounds: body.bounds.map(|(c, r)| (v(&c), r)),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,0 +1,88 @@
+//! Run a loaded scene to its end time, writing `history.csv` every `history_every` steps
+//! and `snapshots` evenly spaced VTK snapshots (plus the first and the last state). A
+//! failure stops the run; what was written stays on disk and the failure is returned in
+//! the summary as a result.
+
+use crate::failure::SimulationError;
+use crate::output::{write_snapshot, HistoryWriter};
+use crate::scene::{Scene, Simulation};
+use crate::solver::{RunError, Solver};
+use crate::timestep::TimeStep;
+use std::path::Path;
+
+#[derive(Debug)]
+pub struct RunSummary {
+    pub time_step: TimeStep,
+    pub steps: usize,
+    pub particles: usize,
+    pub failure: Option<SimulationError>,
+}
+
+/// Run `scene` writing into `dir`; `progress(t, t_end)` is called after every step.
+pub fn run_scene(
+    scene: Scene,
+    dir: &Path,
+    progress: impl FnMut(f64, f64),
+) -> std::io::Result<RunSummary> {
+    std::fs::create_dir_all(dir)?;
+    match scene.simulation {
+        Simulation::Planar(s) => run(
+            s,
+            scene.end,
+            scene.output.history_every,
+            scene.output.snapshots,
+            dir,
+            progress,
+        ),
+        Simulation::Solid(s) => run(
+            s,
+            scene.end,
+            scene.output.history_every,
+            scene.output.snapshots,
+            dir,
+            progress,
+        ),
+    }
+}
+
+fn run<const D: usize>(
+    mut solver: Solver<D>,
+    end: f64,
+    history_every: usize,
+    snapshots: usize,
+    dir: &Path,
+    mut progress: impl FnMut(f64, f64),
+) -> std::io::Result<RunSummary> {
+    let time_step = solver.initialize();
+    let mut history = HistoryWriter::create(&dir.join("history.csv"), &solver)?;
+    history.write(&solver)?;
+    write_snapshot(dir, 0, &solver)?;
+    let snapshot_dt = end / snapshots.max(1) as f64;
+    let mut next_snapshot = 1;
+    let result = solver.run_until(end, |s| {
+        if s.step % history_every == 0 {
+            history.write(s)?;
+        }
+        if s.time >= next_snapshot as f64 * snapshot_dt - 0.5 * s.dt {
+            write_snapshot(dir, next_snapshot, s)?;
+            next_snapshot += 1;
+        }
+        progress(s.time, end);
+        Ok(())
+    });
+    let failure = match result {
+        Ok(()) => None,
+        Err(RunError::Io(e)) => return Err(e),
+        Err(RunError::Simulation(e)) => {
+            history.write(&solver)?;
+            write_snapshot(dir, next_snapshot, &solver)?;
+            Some(e)
+        }
+    };
+    Ok(RunSummary {
+        time_step,
+        steps: solver.step,
+        particles: solver.particles.len(),
+        failure,
+    })
+}
