@@ -27,6 +27,10 @@ enum Command {
     Fit(fitting::cli::fit::Args),
     /// Write a synthetic experiment set from a stated parameter set, noise level and seed.
     Synth(fitting::cli::synth::Args),
+    /// Run an MPM scene (TOML): progress bar, CSV history, VTK snapshots, energy chart.
+    Simulate(fitting::cli::simulate::Args),
+    /// Measure MPM throughput (particle-steps/s with 1 and 2 threads) and bytes per particle.
+    BenchMpm(fitting::cli::bench_mpm::Args),
 }
 
 fn main() {
@@ -38,6 +42,8 @@ fn main() {
         Command::Shpb(a) => fitting::cli::shpb::run(a),
         Command::Fit(a) => fitting::cli::fit::run(a),
         Command::Synth(a) => fitting::cli::synth::run(a),
+        Command::Simulate(a) => fitting::cli::simulate::run(a),
+        Command::BenchMpm(a) => fitting::cli::bench_mpm::run(a),
     };
     if let Err(e) = result {
         eprintln!("error: {e:#}");

@@ -129,6 +129,9 @@ pub struct RigidContact<const D: usize> {
     pub contact: ContactState<D>,
 }
 
+/// Bytes of per-particle scratch the solver keeps between steps.
+pub const SCRATCH_BYTES_PER_PARTICLE: usize = 2 * 3 * 8 + 8 + 4;
+
 /// Per-particle work arrays of one step.
 #[derive(Default)]
 struct Scratch<const D: usize> {

@@ -1,8 +1,10 @@
 //! One module per `mpw` subcommand: its clap `Args` and its `run`.
 
 pub mod bench;
+pub mod bench_mpm;
 pub mod drive;
 pub mod fit;
 pub mod shpb;
+pub mod simulate;
 pub mod synth;
 pub mod verify;

@@ -1,0 +1,84 @@
+//! `mpw simulate SCENE.toml`: run an MPM scene with a progress bar; write the time history
+//! (CSV), particle snapshots (VTK) and an energy chart (PNG) into the output directory.
+//! A failed run is reported with its step, time, particle and cause; its output stays.
+
+use crate::chart::{LineChart, Series};
+use anyhow::{Context, Result};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::{Path, PathBuf};
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Scene file (see data/scenes/).
+    pub scene: PathBuf,
+    /// Output directory (default: out/<scene name>).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let scene = mpm_core::scene::load(&args.scene)?;
+    let name = args
+        .scene
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "scene".into());
+    let out = args.out.unwrap_or_else(|| Path::new("out").join(&name));
+    let bar = ProgressBar::new(1000);
+    bar.set_style(ProgressStyle::with_template(
+        "{bar:40} {percent:>3}% t = {msg} [{elapsed} < {eta}]",
+    )?);
+    let summary = mpm_core::run::run_scene(scene, &out, |t, end| {
+        bar.set_position((1000.0 * t / end) as u64);
+        bar.set_message(format!("{t:.3e} s"));
+    })
+    .with_context(|| format!("writing output to {}", out.display()))?;
+    bar.finish();
+    println!("{} particles, {}", summary.particles, summary.time_step);
+    println!(
+        "{} steps; history, snapshots and chart in {}",
+        summary.steps,
+        out.display()
+    );
+    energy_chart(&out.join("history.csv"), &out.join("energy.png"), &name)?;
+    if let Some(e) = summary.failure {
+        anyhow::bail!("{e}");
+    }
+    Ok(())
+}
+
+/// Chart kinetic, internal and total energy from a history file.
+pub fn energy_chart(history: &Path, png: &Path, title: &str) -> Result<()> {
+    let mut reader = csv::Reader::from_path(history)?;
+    let header = reader.headers()?.clone();
+    let col = |name: &str| {
+        header
+            .iter()
+            .position(|h| h == name)
+            .context(format!("history has no column {name}"))
+    };
+    let (t, k, w, x, b) = (
+        col("t")?,
+        col("kinetic")?,
+        col("internal")?,
+        col("external_work")?,
+        col("boundary_work")?,
+    );
+    let mut rows: Vec<[f64; 5]> = Vec::new();
+    for r in reader.records() {
+        let r = r?;
+        let v = |i: usize| r[i].parse::<f64>().unwrap_or(f64::NAN);
+        rows.push([v(t), v(k), v(w), v(x), v(b)]);
+    }
+    let series = |label: &str, f: &dyn Fn(&[f64; 5]) -> f64| Series {
+        label: label.into(),
+        points: rows.iter().map(|r| (r[0], f(r))).collect(),
+    };
+    LineChart::new(format!("{title}: energies"), "t [s]", "energy [J]")
+        .with(series("kinetic", &|r| r[1]))
+        .with(series("internal (stress work)", &|r| r[2]))
+        .with(series("K + W_int - W_ext - W_bc", &|r| {
+            r[1] + r[2] - r[3] - r[4]
+        }))
+        .write_png(png)
+}
