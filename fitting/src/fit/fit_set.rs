@@ -4,7 +4,7 @@
 use super::model::{with_values, Material};
 use super::objective::Block;
 use super::params::FreeParam;
-use super::set_file::{resolve, ExperimentEntry, SetFile};
+use super::set_file::{resolve, ExperimentEntry, SetFile, Window};
 use super::shpb_input::face_signals;
 use super::shpb_specimen::ShpbSpecimen;
 use super::single_point::SinglePoint;
@@ -174,8 +174,8 @@ fn tensile_block(
     entry: &ExperimentEntry,
     max: usize,
 ) -> Result<Block> {
-    if entry.window.is_some() || entry.forces.is_some() {
-        bail!("fields `window` and `forces` are for SHPB experiments; a tensile window goes in the experiment TOML");
+    if entry.window.is_some() || entry.forces.is_some() || entry.max_equilibrium_ratio.is_some() {
+        bail!("fields `window`, `forces` and `max_equilibrium_ratio` are for SHPB experiments; a tensile window goes in the experiment TOML");
     }
     let thermal = match entry.thermal.as_deref() {
         Some("isothermal") => Thermal::Isothermal,
@@ -186,10 +186,19 @@ fn tensile_block(
             bail!("field `thermal`: \"{other}\", expected \"isothermal\" or \"adiabatic\"")
         }
     };
+    // The model follows the record from its first sample (its own strain-time history)
+    // and is compared at the thinned samples of the valid window.
     let idx = thin(e.used_range(), max);
     let pick = |v: &[f64]| idx.iter().map(|&i| v[i]).collect::<Vec<f64>>();
     let (t, strain, stress) = (pick(&e.time_s), pick(&e.eng_strain), pick(&e.eng_stress_pa));
-    let model = Tensile::new(base, &t, &strain, thermal, e.temperature_k)?;
+    let model = Tensile::new(
+        base,
+        &e.time_s,
+        &e.eng_strain,
+        &idx,
+        thermal,
+        e.temperature_k,
+    )?;
     let mut block = Block::new(
         &e.name,
         Box::new(SinglePoint::new(model)),
@@ -206,40 +215,79 @@ fn tensile_block(
     Ok(block)
 }
 
+/// Which bar forces an SHPB experiment is compared with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Channel {
+    Both,
+    F1,
+    F2,
+}
+
+/// Mean of R = 2 |F1 − F2| / |F1 + F2| over `range` [-].
+fn mean_equilibrium_ratio(f1: &[f64], f2: &[f64], range: std::ops::Range<usize>) -> f64 {
+    let n = range.len() as f64;
+    range
+        .map(|k| 2.0 * (f1[k] - f2[k]).abs() / (f1[k] + f2[k]).abs())
+        .sum::<f64>()
+        / n
+}
+
 fn shpb_block(
     base: &Material,
     e: &ShpbExperiment,
     entry: &ExperimentEntry,
     max: usize,
 ) -> Result<Block> {
-    let Some([t0, t1]) = entry.window else {
-        bail!("field `window`: an SHPB experiment needs its specimen-face time window [t_min, t_max] in s");
-    };
-    if !(0.0 <= t0 && t0 < t1) {
-        bail!("field `window`: [{t0}, {t1}] must satisfy 0 <= t_min < t_max");
-    }
     if entry.thermal.is_some() {
         bail!("field `thermal`: an SHPB specimen is always adiabatic");
     }
-    let channels = match entry.forces.as_deref() {
-        None | Some("both") => 2,
-        Some("f1") => 1,
-        Some(other) => bail!("field `forces`: \"{other}\", expected \"both\" or \"f1\""),
+    let (channels, channel) = match entry.forces.as_deref() {
+        None | Some("both") => (2, Channel::Both),
+        Some("f1") => (1, Channel::F1),
+        Some("f2") => (1, Channel::F2),
+        Some(other) => {
+            bail!("field `forces`: \"{other}\", expected \"both\", \"f1\" or \"f2\"")
+        }
     };
     let face = face_signals(e)?;
-    let end = *face.time_s.last().unwrap();
-    if t1 > end {
-        bail!(
-            "field `window`: t_max = {t1:e} s is past the analysed record, which ends at {end:e} s after the incident pulse start"
-        );
+    let range = match &entry.window {
+        None => bail!("field `window`: an SHPB experiment needs its specimen-face time window [t_min, t_max] in s, or \"plateau\""),
+        Some(Window::Named(name)) if name == "plateau" => face.plateau.start.max(1)..face.plateau.end,
+        Some(Window::Named(other)) => {
+            bail!("field `window`: \"{other}\", expected [t_min, t_max] or \"plateau\"")
+        }
+        Some(Window::Times([t0, t1])) => {
+            let (t0, t1) = (*t0, *t1);
+            if !(0.0 <= t0 && t0 < t1) {
+                bail!("field `window`: [{t0}, {t1}] must satisfy 0 <= t_min < t_max");
+            }
+            let end = *face.time_s.last().unwrap();
+            if t1 > end {
+                bail!(
+                    "field `window`: t_max = {t1:e} s is past the analysed record, which ends at {end:e} s after the incident pulse start"
+                );
+            }
+            let inside: Vec<usize> = (1..face.time_s.len())
+                .filter(|&k| face.time_s[k] >= t0 && face.time_s[k] <= t1)
+                .collect();
+            if inside.is_empty() {
+                bail!("field `window`: no samples in [{t0:e}, {t1:e}] s");
+            }
+            inside[0]..inside[inside.len() - 1] + 1
+        }
+    };
+    if range.is_empty() {
+        bail!("field `window`: no samples in the window");
     }
-    let inside: Vec<usize> = (1..face.time_s.len())
-        .filter(|&k| face.time_s[k] >= t0 && face.time_s[k] <= t1)
-        .collect();
-    if inside.is_empty() {
-        bail!("field `window`: no samples in [{t0:e}, {t1:e}] s");
+    let ratio = mean_equilibrium_ratio(&face.f1_n, &face.f2_n, range.clone());
+    if let Some(limit) = entry.max_equilibrium_ratio {
+        if !(ratio <= limit) {
+            bail!(
+                "field `max_equilibrium_ratio`: the mean equilibrium ratio over the window is {ratio:.3}, above {limit}: the specimen is not in equilibrium"
+            );
+        }
     }
-    let samples: Vec<usize> = thin(inside[0]..inside[inside.len() - 1] + 1, max);
+    let samples: Vec<usize> = thin(range, max);
     let model = ShpbSpecimen::new(
         base,
         &face.time_s,
@@ -250,7 +298,12 @@ fn shpb_block(
         e.temperature_k,
         channels,
     )?;
-    let mut measured: Vec<f64> = samples.iter().map(|&k| face.f1_n[k]).collect();
+    let first = if channel == Channel::F2 {
+        &face.f2_n
+    } else {
+        &face.f1_n
+    };
+    let mut measured: Vec<f64> = samples.iter().map(|&k| first[k]).collect();
     let times: Vec<f64> = samples.iter().map(|&k| face.time_s[k]).collect();
     let mut x: Vec<f64> = times.iter().map(|t| t * 1e6).collect();
     if channels == 2 {
@@ -268,11 +321,12 @@ fn shpb_block(
         1e-3,
         entry.weight,
     )?;
-    block.channels = if channels == 2 {
-        vec!["F1".into(), "F2".into()]
-    } else {
-        vec!["F1".into()]
+    block.channels = match channel {
+        Channel::Both => vec!["F1".into(), "F2".into()],
+        Channel::F1 => vec!["F1".into()],
+        Channel::F2 => vec!["F2".into()],
     };
+    block.equilibrium_ratio = ratio;
     block.temperature_k = e.temperature_k;
     let strain_rate: Vec<f64> = samples
         .iter()

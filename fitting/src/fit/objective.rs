@@ -38,6 +38,9 @@ pub struct Block {
     pub rate_per_s: f64,
     /// Test temperature [K].
     pub temperature_k: f64,
+    /// SHPB: mean equilibrium ratio R = 2 |F1 − F2| / |F1 + F2| over the window [-]
+    /// (NaN for other experiments).
+    pub equilibrium_ratio: f64,
 }
 
 impl Block {
@@ -84,6 +87,7 @@ impl Block {
             channels: vec!["measured".into()],
             rate_per_s: f64::NAN,
             temperature_k: f64::NAN,
+            equilibrium_ratio: f64::NAN,
         })
     }
 

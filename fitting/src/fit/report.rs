@@ -50,6 +50,8 @@ struct ExperimentRow {
     rms_si: f64,
     unit: String,
     rms_percent_of_mean: f64,
+    /// SHPB: mean equilibrium ratio R over the window.
+    equilibrium_ratio: Option<f64>,
 }
 
 #[derive(Serialize)]
@@ -80,6 +82,7 @@ fn experiment_rows(set: &FitSet, result: &FitResult) -> Vec<ExperimentRow> {
                     "Pa".into()
                 },
                 rms_percent_of_mean: 100.0 * rms / b.scale,
+                equilibrium_ratio: Some(b.equilibrium_ratio).filter(|r| r.is_finite()),
             }
         })
         .collect()
@@ -210,8 +213,8 @@ pub fn table(set: &FitSet, result: &FitResult) -> String {
     let _ = writeln!(out, "\nExperiments (final parameters):");
     let _ = writeln!(
         out,
-        "  {:<28} {:>10} {:>9} {:>8} {:>14} {:>8}",
-        "name", "rate 1/s", "T K", "samples", "RMS", "RMS %"
+        "  {:<28} {:>10} {:>9} {:>8} {:>14} {:>8} {:>6}",
+        "name", "rate 1/s", "T K", "samples", "RMS", "RMS %", "R"
     );
     for e in &r.experiments {
         let rms = if e.unit == "Pa" {
@@ -219,10 +222,13 @@ pub fn table(set: &FitSet, result: &FitResult) -> String {
         } else {
             format!("{:.3} kN", e.rms_si * 1e-3)
         };
+        let ratio = e
+            .equilibrium_ratio
+            .map_or_else(|| "-".to_string(), |r| format!("{r:.3}"));
         let _ = writeln!(
             out,
-            "  {:<28} {:>10.3e} {:>9.2} {:>8} {:>14} {:>8.3}",
-            e.name, e.rate_per_s, e.temperature_k, e.samples, rms, e.rms_percent_of_mean
+            "  {:<28} {:>10.3e} {:>9.2} {:>8} {:>14} {:>8.3} {:>6}",
+            e.name, e.rate_per_s, e.temperature_k, e.samples, rms, e.rms_percent_of_mean, ratio
         );
     }
     let _ = writeln!(out, "\nTotal wall time {:.2} s", r.total_wall_time_s);

@@ -22,8 +22,11 @@
 //! weight = 1.0                # optional, default 1
 //! level = "single-point"      # model level (only "single-point" so far)
 //! thermal = "isothermal"      # tensile: "isothermal" | "adiabatic" (default: adiabatic above 1 1/s)
-//! window = [15e-6, 115e-6]    # shpb: window [s] after the incident pulse start at the faces (required)
-//! forces = "both"             # shpb: "both" (F1 and F2) | "f1"
+//! window = [15e-6, 115e-6]    # shpb (required): window [s] after the incident pulse start at the
+//!                             #   faces, or "plateau": the strain-rate plateau of `shpb::analyze`
+//! forces = "both"             # shpb: "both" (F1 and F2) | "f1" | "f2" (1-wave: transmitted bar)
+//! max_equilibrium_ratio = 0.2 # shpb, optional: reject the record if the mean R = 2|F1 − F2|/|F1 + F2|
+//!                             #   over the window exceeds this
 //! max_samples = 300           # optional: thin the window to at most this many samples
 //! [[stage]]                   # optional; default: one stage, all parameters, all experiments
 //! free = ["A", "B", "N"]
@@ -85,9 +88,18 @@ pub struct ExperimentEntry {
     #[serde(default = "single_point")]
     pub level: String,
     pub thermal: Option<String>,
-    pub window: Option<[f64; 2]>,
+    pub window: Option<Window>,
     pub forces: Option<String>,
+    pub max_equilibrium_ratio: Option<f64>,
     pub max_samples: Option<usize>,
+}
+
+/// An SHPB fit window: explicit times [s] or the strain-rate plateau (`"plateau"`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum Window {
+    Times([f64; 2]),
+    Named(String),
 }
 
 fn unit_weight() -> f64 {

@@ -6,10 +6,16 @@
 //! (incident-pulse start at the gauge plus d_i/c0), so that a fit window means the same
 //! thing for every record; the analysis window starts a margin earlier (negative times),
 //! where v ≈ 0, and the specimen length is integrated from there.
+//!
+//! The strain-rate plateau of the analysis (3-wave rate within ±15 % of its median over
+//! the loading phase, see `crate::shpb`) and its mean equilibrium ratio
+//! R = 2 |F1 − F2| / |F1 + F2| come along, so that a fit can compare the model only where
+//! the specimen deforms at constant rate.
 
 use crate::experiment::ShpbExperiment;
 use crate::shpb::analyze;
 use anyhow::Result;
+use std::ops::Range;
 
 /// Specimen-face signals from the analysis.
 #[derive(Debug, Clone)]
@@ -22,6 +28,10 @@ pub struct FaceSignals {
     pub f1_n: Vec<f64>,
     /// Transmitted-face force F2 [N], compression positive.
     pub f2_n: Vec<f64>,
+    /// Samples on the strain-rate plateau.
+    pub plateau: Range<usize>,
+    /// Mean equilibrium ratio R on the plateau [-].
+    pub plateau_equilibrium_ratio: f64,
 }
 
 pub fn face_signals(exp: &ShpbExperiment) -> Result<FaceSignals> {
@@ -33,5 +43,7 @@ pub fn face_signals(exp: &ShpbExperiment) -> Result<FaceSignals> {
         velocity_m_per_s: a.relative_velocity_m_per_s,
         f1_n: a.force_front_n,
         f2_n: a.force_back_n,
+        plateau: a.plateau.range.clone(),
+        plateau_equilibrium_ratio: a.plateau.equilibrium_ratio,
     })
 }

@@ -119,7 +119,14 @@ fn write_tensile(dir: &Path, spec: &SynthSpec, rng: &mut Pcg64) -> Result<()> {
         TENSILE_SAMPLES,
     );
     let time: Vec<f64> = strain.iter().map(|e| e / rate).collect();
-    let model = SinglePoint::new(Tensile::new(m, &time, &strain, Thermal::Isothermal, theta)?);
+    let model = SinglePoint::new(Tensile::new(
+        m,
+        &time,
+        &strain,
+        &(0..time.len()).collect::<Vec<_>>(),
+        Thermal::Isothermal,
+        theta,
+    )?);
     let mut stress = model.predict(m)?;
     add_noise(&mut stress, spec.noise, rng);
     let mut csv = truth_header(spec, "quasi-static tensile test");

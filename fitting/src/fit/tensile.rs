@@ -7,7 +7,10 @@
 //! P = force / A0 = σ_xx F_yy F_zz / λ_θ² [Pa] (= σ_xx J / F_xx at θ_s = θ0).
 //!
 //! Quasi-static tests are isothermal at θ_s; high-rate tests are adiabatic (Taylor-Quinney
-//! heating). The path steps at the measured samples, subdivided so that no step exceeds
+//! heating). The path follows the record's own strain-time history from its first sample
+//! (so the strain rate ε̇ = dε/dt and the adiabatic temperature at a compared sample are
+//! those of the test, also when the compared window starts late), stepping at every
+//! record point up to the last compared sample, subdivided so that no step exceeds
 //! `MAX_STRAIN_STEP`; noisy strains are made monotone by a running maximum.
 
 use super::model::Material;
@@ -39,30 +42,38 @@ pub struct Tensile {
 }
 
 impl Tensile {
-    /// `times` [s] and engineering `strain` [-] of the samples to predict (strictly
-    /// increasing times, the first at or after the start of loading), the start
-    /// temperature `theta` [K].
+    /// The record's history `times` [s] and engineering `strain` [-] (strictly increasing
+    /// times, the first at or after the start of loading), the indices `samples` of the
+    /// history points to predict (strictly increasing), the start temperature `theta` [K].
     pub fn new(
         material: &Material,
         times: &[f64],
         strain: &[f64],
+        samples: &[usize],
         thermal: Thermal,
         theta: f64,
     ) -> Result<Self> {
         if times.len() < 2 || times.len() != strain.len() {
             bail!(
-                "tensile model needs at least two samples with one strain each (got {} times, {} strains)",
+                "tensile model needs at least two history points with one strain each (got {} times, {} strains)",
                 times.len(),
                 strain.len()
             );
+        }
+        if samples.is_empty() || samples.windows(2).any(|w| w[1] <= w[0]) {
+            bail!("tensile model: sample indices must be strictly increasing");
+        }
+        let last = *samples.last().unwrap();
+        if last >= times.len() {
+            bail!("tensile model: sample index {last} beyond the history");
         }
         let lambda = thermal_stretch(material, theta);
         // Start at zero strain one sample interval before the first sample.
         let mut path_t = vec![times[0] - (times[1] - times[0])];
         let mut path_e = vec![0.0];
-        let mut samples = Vec::with_capacity(times.len());
+        let mut records = Vec::with_capacity(times.len());
         let mut e_max: f64 = 0.0;
-        for (&t, &e) in times.iter().zip(strain) {
+        for (&t, &e) in times[..=last].iter().zip(strain) {
             let (t_prev, e_prev) = (*path_t.last().unwrap(), *path_e.last().unwrap());
             if !(t > t_prev) {
                 bail!("tensile model: time {t} s is not after {t_prev} s");
@@ -74,8 +85,9 @@ impl Tensile {
                 path_t.push(t_prev + w * (t - t_prev));
                 path_e.push(e_prev + w * (e_max - e_prev));
             }
-            samples.push(path_t.len() - 1);
+            records.push(path_t.len() - 1);
         }
+        let samples = samples.iter().map(|&k| records[k]).collect();
         let stretch = path_e.iter().map(|e| lambda * (1.0 + e)).collect();
         let temperature = match thermal {
             Thermal::Isothermal => Temperature::Prescribed(Ramp::constant(theta)),
