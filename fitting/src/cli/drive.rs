@@ -54,6 +54,9 @@ pub struct Args {
     /// CSV with columns `time_s,length_ratio` for `--path shpb`.
     #[arg(long)]
     pub length_history: Option<PathBuf>,
+    /// Initial specimen diameter [m] for `--path shpb`: adds the force F = σ A0 L0/L.
+    #[arg(long, default_value_t = 8e-3)]
+    pub specimen_diameter: f64,
     #[arg(long, default_value = "out/drive")]
     pub out: PathBuf,
 }
@@ -179,7 +182,11 @@ pub fn run(args: Args) -> Result<()> {
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
     let csv = args.out.join("drive.csv");
-    driver::write_csv(&csv, &records)?;
+    let area = match args.path {
+        PathKind::Shpb => Some(std::f64::consts::PI * 0.25 * args.specimen_diameter.powi(2)),
+        _ => None,
+    };
+    driver::write_csv(&csv, &records, area)?;
     let last = records.last().unwrap();
     println!(
         "{}: {} steps, final σ_xx = {:.1} MPa, σ_xy = {:.1} MPa, α = {:.4}, θ = {:.1} K",

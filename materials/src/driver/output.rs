@@ -19,6 +19,13 @@ pub struct Record<D = f64> {
 }
 
 impl<D: Scalar> Record<D> {
+    /// Axial force on an SHPB specimen of initial cross-section `a0` [m²] loaded along
+    /// x: F = σ_xx A0 L0 / L (plastically incompressible, elastic volume change
+    /// neglected) [N].
+    pub fn shpb_force(&self, a0: f64) -> D {
+        self.sigma[(0, 0)] * D::from(a0) / self.f[(0, 0)]
+    }
+
     /// Logarithmic (Hencky) strain ½ ln(F Fᵀ).
     pub fn hencky_strain(&self) -> M3<f64> {
         let f = self.f.map(|x| x.re());
@@ -30,14 +37,23 @@ impl<D: Scalar> Record<D> {
 
 pub const CSV_HEADER: &str = "time_s,strain_xx,strain_yy,strain_zz,strain_xy,strain_yz,strain_xz,stress_xx_pa,stress_yy_pa,stress_zz_pa,stress_xy_pa,stress_yz_pa,stress_xz_pa,von_mises_pa,alpha,theta_k";
 
-/// Write records as CSV: time, Hencky strains, Cauchy stresses, von Mises stress, α, θ.
-pub fn write_csv<D: Scalar>(path: &Path, records: &[Record<D>]) -> std::io::Result<()> {
+/// Write records as CSV: time, Hencky strains, Cauchy stresses, von Mises stress, α, θ,
+/// and with `shpb_area` = Some(A0 [m²]) the specimen force `force_n`.
+pub fn write_csv<D: Scalar>(
+    path: &Path,
+    records: &[Record<D>],
+    shpb_area: Option<f64>,
+) -> std::io::Result<()> {
     let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
-    writeln!(w, "{CSV_HEADER}")?;
+    writeln!(
+        w,
+        "{CSV_HEADER}{}",
+        if shpb_area.is_some() { ",force_n" } else { "" }
+    )?;
     for r in records {
         let e = r.hencky_strain();
         let s = r.sigma.map(|x| x.re());
-        writeln!(
+        write!(
             w,
             "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
             r.time,
@@ -57,6 +73,10 @@ pub fn write_csv<D: Scalar>(path: &Path, records: &[Record<D>]) -> std::io::Resu
             r.state.alpha.re(),
             r.state.theta.re()
         )?;
+        match shpb_area {
+            Some(a0) => writeln!(w, ",{:e}", r.shpb_force(a0).re())?,
+            None => writeln!(w)?,
+        }
     }
     w.flush()
 }
