@@ -281,7 +281,7 @@ fn shpb_block(
     }
     let ratio = mean_equilibrium_ratio(&face.f1_n, &face.f2_n, range.clone());
     if let Some(limit) = entry.max_equilibrium_ratio {
-        if !(ratio <= limit) {
+        if ratio.is_nan() || ratio > limit {
             bail!(
                 "field `max_equilibrium_ratio`: the mean equilibrium ratio over the window is {ratio:.3}, above {limit}: the specimen is not in equilibrium"
             );
