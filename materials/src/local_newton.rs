@@ -1,7 +1,10 @@
 //! Safeguarded Newton solver for the local return-mapping systems.
 //!
 //! Full Newton steps with a backtracking line search on ‖r‖∞. The callers solve for
-//! ln Δα, which keeps Δα > 0 and removes the infinite slope of α^N at first yield.
+//! u = ln Δα (the last unknown), which keeps Δα > 0 and removes the infinite slope of
+//! α^N at first yield. A step changes u by at most `MAX_LOG_STEP` (Δα by a factor
+//! e^5 ≈ 150): when Δα is tiny the residual barely depends on u and the raw Newton
+//! step in u can be astronomically large.
 
 use crate::error::MaterialError;
 use nalgebra::{Const, DimMin, SMatrix, SVector};
@@ -9,9 +12,10 @@ use nalgebra::{Const, DimMin, SMatrix, SVector};
 /// Converged when the scaled residual is below this.
 pub const TOL: f64 = 1e-13;
 pub const MAX_ITERATIONS: usize = 60;
+pub const MAX_LOG_STEP: f64 = 5.0;
 
-/// Solve r(x) = 0 from `x0`. `eval` returns r and ∂r/∂x. Returns the root and the
-/// Jacobian there.
+/// Solve r(x) = 0 from `x0`, whose last component is u = ln Δα. `eval` returns r and
+/// ∂r/∂x. Returns the root and the Jacobian there.
 pub fn solve<const N: usize>(
     mut eval: impl FnMut(&SVector<f64, N>) -> (SVector<f64, N>, SMatrix<f64, N, N>),
     x0: SVector<f64, N>,
@@ -34,7 +38,7 @@ where
         let dx = k.lu().solve(&(-r)).ok_or(MaterialError::Singular {
             what: "return mapping",
         })?;
-        let mut step = 1.0;
+        let mut step = (MAX_LOG_STEP / dx[N - 1].abs()).min(1.0);
         let mut accepted = false;
         for _ in 0..12 {
             let trial = x + dx * step;
