@@ -84,6 +84,7 @@ fn iso_error_charts(materials: &Path, out: &Path) -> Result<()> {
 pub fn run(args: Args) -> Result<()> {
     let mut cases = studies::verify_cases(&args.materials, args.full)?;
     cases.extend(crate::shpb::verify_cases());
+    cases.extend(crate::fit::verify::verify_cases());
     cases.extend(mpm_core::verify::verify_cases(args.full));
     println!(
         "{:<60} {:>14} {:>14} {:>12} result",
