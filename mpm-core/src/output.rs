@@ -2,7 +2,8 @@
 //! (POLYDATA vertices) that ParaView opens.
 //!
 //! History columns: t [s], kinetic, internal (stress work), external work, boundary work
-//! and energy error [J]; momentum p_i [kg m/s]; per rigid body the contact force on it
+//! and energy error [J]; momentum p_i [kg m/s]; with several bodies, each body's kinetic
+//! energy kinetic_<body> [J]; per rigid body the contact force on it
 //! F_i [N] and the number of points in contact; per control point its position x_i [m].
 //! Snapshot point data: velocity [m/s], Cauchy stress σ (3×3) [Pa], von Mises stress [Pa],
 //! α [-], θ [K], J = det F [-], body index.
@@ -33,6 +34,9 @@ impl HistoryWriter {
         .map(String::from)
         .to_vec();
         cols.extend((0..D).map(|i| format!("momentum_{}", AXES[i])));
+        if solver.blocks.len() > 1 {
+            cols.extend(solver.blocks.iter().map(|b| format!("kinetic_{}", b.name)));
+        }
         for r in &solver.rigid {
             cols.extend((0..D).map(|i| format!("{}_force_{}", r.body.name, AXES[i])));
             cols.push(format!("{}_contacts", r.body.name));
@@ -55,6 +59,9 @@ impl HistoryWriter {
             e.error(),
         ];
         row.extend(s.momentum().iter());
+        if s.blocks.len() > 1 {
+            row.extend(s.blocks.iter().map(|b| body_kinetic(s, b.range.clone())));
+        }
         for r in &s.rigid {
             row.extend(r.contact.force.iter());
             row.push(r.contact.active as f64);
@@ -66,6 +73,15 @@ impl HistoryWriter {
         writeln!(self.out, "{}", text.join(","))?;
         self.out.flush()
     }
+}
+
+/// Kinetic energy ½ Σ m v² of the particles in `range` [J].
+fn body_kinetic<const D: usize>(s: &Solver<D>, range: std::ops::Range<usize>) -> f64 {
+    let p = &s.particles;
+    crate::sum::fixed_sum(range.len(), 0.0, |k| {
+        let i = range.start + k;
+        0.5 * p.mass[i] * p.velocity[i].norm_squared()
+    })
 }
 
 /// The first three components of `x`, padded with zeros.

@@ -3,7 +3,9 @@
 //! sizes unless `full`).
 
 pub mod collision;
+pub mod impact;
 pub mod rigid_contact;
+pub mod taylor;
 pub mod vibration;
 
 use crate::integrators::{Integrator, MassSpring};
@@ -204,6 +206,11 @@ pub fn verify_cases(full: bool) -> Vec<CaseResult> {
             Err(e) => out.push(CaseResult::holds(format!("{name}: {e}"), false)),
         }
     }
+    // issue 3: Taylor bar, axisymmetric against a 3D quarter model (symmetry planes)
+    taylor::cases(full, &mut out);
+
+    // section 9.2: plastic impact of a steel disk into a 6061-T6 target
+    impact::cases(full, &mut out);
     out
 }
 
