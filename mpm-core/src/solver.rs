@@ -21,7 +21,7 @@
 use crate::boundary::{NodeSet, SpringBc, VelocityBc};
 use crate::contact::{candidate_force, ContactState};
 use crate::failure::{Cause, SimulationError};
-use crate::grid::{Grid, Node};
+use crate::grid::{floor_i64, Grid, Node};
 use crate::kinematics::Kinematics;
 use crate::material_block::MaterialBlock;
 use crate::particles::Particles;
@@ -489,9 +489,8 @@ impl<const D: usize> Solver<D> {
         let s = &mut self.scratch;
         // bucket particles by slab (stable counting sort)
         let (origin, inv_h, lo) = (grid.origin[last], grid.inv_spacing[last], grid.lo[last]);
-        let slab_of = |i: usize| {
-            ((((p.position[i][last] - origin) * inv_h).floor() as i64 - lo) as usize) / width
-        };
+        let slab_of =
+            |i: usize| ((floor_i64((p.position[i][last] - origin) * inv_h) - lo) as usize) / width;
         s.slab_start.clear();
         s.slab_start.resize(slabs + 1, 0);
         for i in 0..p.len() {
