@@ -59,7 +59,8 @@ pub struct Settings<const D: usize> {
     /// Nodes lighter than this fraction of the lightest particle are not accelerated:
     /// they keep v = p/m and a = 0. Their f/m would be huge (the force of a point near the
     /// far side of a cell does not shrink with its shape function value), which makes the
-    /// USL unstable when a point nears a cell face.
+    /// USL unstable when a point nears a cell face. `initialize` raises it to the
+    /// stability limit (c Δt / 2h)² of `timestep::node_mass_cutoff` when that is larger.
     pub mass_cutoff: f64,
     /// Safety factor on the CFL and spring limits.
     pub safety: f64,
@@ -290,7 +291,8 @@ impl<const D: usize> Solver<D> {
             self.settings.dt,
         );
         self.dt = ts.dt;
-        self.mass_cutoff = self.settings.mass_cutoff * lightest;
+        let stable = timestep::node_mass_cutoff(self.grid.min_spacing(), speed, ts.dt);
+        self.mass_cutoff = self.settings.mass_cutoff.max(stable) * lightest;
         self.scratch.force = vec![SVector::zeros(); n];
         self.scratch.grid_velocity = vec![SVector::zeros(); n];
         self.scratch.work = vec![0.0; n];

@@ -3,6 +3,12 @@
 //! times a safety factor, also bounded by the stability of the stiffest penalty or
 //! boundary spring k on the lightest particle m: Δt ≤ safety · 2 √(m/k) (a spring-mass
 //! oscillator under the central difference rule is stable for ω Δt ≤ 2).
+//!
+//! The same limit bounds the lightest node that may be accelerated. A node I that takes
+//! only the share N of a point's mass m (the point near the far face of the cell) has
+//! m_I = N m but a stiffness that does not shrink with N: f_I = −σ V ∇N_I with
+//! |∇N_I| ≈ 1/h, so K_II ≈ ρ c² V / h² and ω² = K_II / m_I ≈ c² / (h² N). The leapfrog
+//! needs ω Δt ≤ 2, i.e. N ≥ (c Δt / (2 h))²: lighter nodes must not be accelerated.
 
 use std::fmt;
 
@@ -77,4 +83,38 @@ pub fn choose(
         }
     }
     best
+}
+
+/// Smallest node mass, as a fraction of a point's mass, that the leapfrog may accelerate
+/// stably with `dt` [s] on cells of size `cell` [m] and the largest speed c + |v| [m/s]:
+/// (c Δt / (2 h))² (see the module notes).
+pub fn node_mass_cutoff(cell: f64, max_speed: f64, dt: f64) -> f64 {
+    (max_speed * dt / (2.0 * cell)).powi(2)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Leapfrog on the node oscillator ü = −ω² u with ω² = c²/(h² N): amplitude after
+    /// 10³ steps relative to the start.
+    fn growth(n: f64, c: f64, h: f64, dt: f64) -> f64 {
+        let w2 = c * c / (h * h * n);
+        let (mut u, mut v) = (1.0, 0.0);
+        for _ in 0..1_000 {
+            v -= w2 * u * dt;
+            u += v * dt;
+        }
+        u.abs().max(v.abs() / w2.sqrt())
+    }
+
+    #[test]
+    fn nodes_above_the_mass_cutoff_are_stable_and_below_it_are_not() {
+        let (c, h, dt) = (2833.0, 2e-3, 2.1e-7);
+        let cutoff = node_mass_cutoff(h, c, dt);
+        // ω Δt = 2 exactly at the cutoff
+        assert!(((c / h) * dt / cutoff.sqrt() - 2.0).abs() < 1e-12);
+        assert!(growth(1.01 * cutoff, c, h, dt) < 20.0);
+        assert!(growth(0.99 * cutoff, c, h, dt) > 1e6);
+    }
 }
