@@ -3,6 +3,7 @@
 //! sizes unless `full`).
 
 pub mod collision;
+pub mod cook;
 pub mod impact;
 pub mod rigid_contact;
 pub mod taylor;
@@ -89,6 +90,69 @@ pub fn verify_cases(full: bool) -> Vec<CaseResult> {
             r.reference,
             0.01,
         ));
+    }
+
+    // section 8.4: Cook's membrane, convergence of u_y(A) with the points per cell
+    let levels: &[usize] = if full {
+        &cook::FULL_LEVELS
+    } else {
+        &cook::TEST_LEVELS
+    };
+    match cook::convergence(levels) {
+        Ok(rows) => {
+            eprint!("Cook's membrane (section 8.4):\n{}", cook::table(&rows));
+            let u: Vec<f64> = rows.iter().map(|r| r.u_y).collect();
+            for (k, r) in rows.iter().enumerate() {
+                let n = r.points_per_cell;
+                let name = format!(
+                    "mpm/cook/n{n}/u_y {:.3} mm ({} points, {:.1} s)",
+                    r.u_y * 1e3,
+                    r.particles,
+                    r.wall
+                );
+                if k > 0 {
+                    // converges from above: u_y falls, by less with every refinement
+                    let shrinks = k < 2 || (u[k] - u[k - 1]).abs() < (u[k - 1] - u[k - 2]).abs();
+                    out.push(CaseResult::holds(
+                        format!("{name}: falls by {:.3} mm", (u[k - 1] - u[k]) * 1e3),
+                        u[k] < u[k - 1] && shrinks,
+                    ));
+                }
+                if k + 1 == rows.len() {
+                    let tol = if full {
+                        cook::FULL_TOLERANCE
+                    } else {
+                        cook::TEST_TOLERANCE
+                    };
+                    out.push(CaseResult::relative(
+                        format!("mpm/cook/n{n}/u_y-vs-thesis-10.708mm"),
+                        r.u_y,
+                        cook::THESIS_U_Y,
+                        tol,
+                    ));
+                    if full {
+                        // the FEM value of Schröder et al., to which the sequence tends
+                        out.push(CaseResult::relative(
+                            format!("mpm/cook/n{n}/u_y-vs-FEM-10.6mm"),
+                            r.u_y,
+                            cook::FEM_U_Y,
+                            0.01,
+                        ));
+                    }
+                }
+                out.push(CaseResult::at_most(
+                    format!("mpm/cook/n{n}/steady-K-over-W_int"),
+                    r.kinetic_ratio,
+                    cook::STEADY_KINETIC,
+                ));
+                out.push(CaseResult::at_most(
+                    format!("mpm/cook/n{n}/steady-late-du-over-u"),
+                    r.late_change,
+                    cook::STEADY_CHANGE,
+                ));
+            }
+        }
+        Err(e) => out.push(CaseResult::holds(format!("mpm/cook: {e}"), false)),
     }
 
     // section 9.1: colliding disks (and spheres in full)
@@ -194,8 +258,12 @@ pub fn verify_cases(full: bool) -> Vec<CaseResult> {
             Ok(r) => {
                 let slides = mu < gamma.to_radians().tan();
                 out.push(CaseResult::holds(
-                    format!("{name}/slides={slides} (slip {:.4} m)", r.slip),
-                    (r.slip > rigid_contact::SLIDING_SLIP) == slides,
+                    format!(
+                        "{name}/slides={slides} (slip {:.4} m, ratio/mu {:.3})",
+                        r.slip,
+                        r.max_ratio / mu
+                    ),
+                    r.slides() == slides,
                 ));
                 out.push(CaseResult::at_most(
                     format!("{name}/ratio-minus-mu"),

@@ -6,7 +6,15 @@
 //! - Inclined plate: a cube (edge 0.5 m, E = 10 kPa, ν = 0.3, ρ = 100 kg/m³) on a plate
 //!   that turns about the x axis to γ within 2 s, κ_pen = 1000 kg/s², α_d = 20 1/s,
 //!   Δt = 1 ms, 7 s. It slides iff μ < tan γ (eq. 9.9), and the tangential/normal ratio of
-//!   the plate force never exceeds μ (eq. 9.3).
+//!   the plate force never exceeds μ (eq. 9.3). At γ = 45° the cube sticks for μ = 1.0 and
+//!   1.8 but tips and rolls (figure 9.14), so sliding is measured in the friction law, not
+//!   by the motion of the cube: a point in contact slips when its attachment point X_A
+//!   moves on the plate (eq. 9.6-9.7; X_A stays put while the point sticks). Each step
+//!   adds the median over the points in contact before and after it of |ΔX_A|. A tipping
+//!   cube slips locally where its faces land (≈ 0.03 m over 7 s at 45°), so the cube
+//!   counts as sliding when, as in figures 9.13-9.15, the force ratio also saturates at μ
+//!   (a sticking or rolling cube stays below it) and the contact slip exceeds
+//!   `SLIDING_SLIP`.
 
 use crate::discretize::{fill, Shape};
 use crate::kinematics::Kinematics;
@@ -81,7 +89,7 @@ pub fn libra(penalty: f64, per_edge: usize) -> Result<LibraResult, crate::Simula
 pub struct InclineResult {
     pub gamma_deg: f64,
     pub mu: f64,
-    /// Slip along the plate of the bottom-face point that moved least [m].
+    /// Slip of the contact points along the plate, summed over the run [m].
     pub slip: f64,
     /// Largest |F_t| / F_n of the plate force while the cube weighs on the plate.
     pub max_ratio: f64,
@@ -134,22 +142,19 @@ pub fn inclined_plate(
         },
     });
     solver.add_rigid_body(plate);
-    let z0 = solver
-        .particles
-        .position
-        .iter()
-        .map(|x| x[2])
-        .fold(f64::INFINITY, f64::min);
-    let bottom: Vec<usize> = (0..solver.particles.len())
-        .filter(|&i| solver.particles.position[i][2] < z0 + 0.5 * s)
-        .collect();
     solver.initialize();
     let weight = solver.particles.mass.iter().sum::<f64>() * 10.0;
-    let start: Vec<Vector3<f64>> = bottom
-        .iter()
-        .map(|&i| solver.particles.position[i])
-        .collect();
-    let mut max_ratio: f64 = 0.0;
+    // attachment point (plate frame) of every particle in contact
+    let attachments = |solver: &Solver<3>| -> Vec<Option<Vector3<f64>>> {
+        let c = &solver.rigid[0].contact;
+        let mut all = vec![None; solver.particles.len()];
+        for (&i, a) in c.candidates.iter().zip(&c.attachment) {
+            all[i] = *a;
+        }
+        all
+    };
+    let mut before = attachments(&solver);
+    let (mut max_ratio, mut slip): (f64, f64) = (0.0, 0.0);
     while solver.time < t_end - 5e-4 {
         solver.step()?;
         // the contact forces of a step act at the pose of its start
@@ -160,15 +165,18 @@ pub fn inclined_plate(
         if f_n > 0.1 * weight {
             max_ratio = max_ratio.max((f - n * f_n).norm() / f_n);
         }
+        let after = attachments(&solver);
+        let mut moved: Vec<f64> = before
+            .iter()
+            .zip(&after)
+            .filter_map(|(b, a)| Some((a.as_ref()? - b.as_ref()?).norm()))
+            .collect();
+        if !moved.is_empty() {
+            moved.sort_by(f64::total_cmp);
+            slip += moved[moved.len() / 2];
+        }
+        before = after;
     }
-    let pose = solver.rigid[0].body.motion.pose(solver.time);
-    // slip along the plate's y direction (plate frame) of the bottom point that moved
-    // least: all bottom points slip when the cube slides, the pivot edge stays when it tips
-    let slip = bottom
-        .iter()
-        .zip(&start)
-        .map(|(&i, x0)| (pose.to_body(&solver.particles.position[i]) - x0)[1].abs())
-        .fold(f64::INFINITY, f64::min);
     Ok(InclineResult {
         gamma_deg,
         mu,
@@ -179,6 +187,14 @@ pub fn inclined_plate(
 
 /// Slip [m] above which the cube counts as sliding (50× the elastic penalty deflection).
 pub const SLIDING_SLIP: f64 = 0.02;
+
+impl InclineResult {
+    /// The cube slides: the plate force sits on the friction cone (|F_t|/F_n within 10⁻³
+    /// of μ, eq. 9.3) and the contact points slipped more than `SLIDING_SLIP`.
+    pub fn slides(&self) -> bool {
+        self.max_ratio > (1.0 - 1e-3) * self.mu && self.slip > SLIDING_SLIP
+    }
+}
 
 #[cfg(test)]
 mod tests {
@@ -208,7 +224,7 @@ mod tests {
             let r = inclined_plate(Scheme::Usl, gamma, mu, 5, 5.0).unwrap();
             eprintln!("{r:?}");
             let slides = mu < f64::tan(f64::to_radians(gamma));
-            assert_eq!(r.slip > SLIDING_SLIP, slides, "{r:?}");
+            assert_eq!(r.slides(), slides, "{r:?}");
             assert!(r.max_ratio <= mu * (1.0 + 1e-9), "{r:?}");
         }
     }

@@ -1,0 +1,265 @@
+//! Cook's membrane (thesis section 8.4, figures 8.7-8.9; the problem of Schröder et al.
+//! [126]) solved for its static equilibrium by dynamic relaxation.
+//!
+//! - Geometry: plane strain trapezoid with corners (0, 0), (48, 44), (48, 60), (0, 44) mm,
+//!   per metre of thickness. The left edge S_s is clamped through the grid: nodes with
+//!   x ≤ 0 get v = 0 (eq. 7.28).
+//! - Load: the shear traction p_y = 20 MPa on the right edge S_t (16 mm), i.e.
+//!   ∫ p_y da = 320 kN per metre, spread over the column of points next to S_t in
+//!   proportion to their volume (eq. 7.31 with eq. 8.3) and kept constant in magnitude and
+//!   direction (the thesis applies it in the current configuration; so does this case).
+//! - Material: Neo-Hooke (eq. 4.13), E = 500 MPa, ν = 0.35.
+//! - Dynamic relaxation (chapter 6, section 8.4): virtual density ρ = 100 kg/m³ and
+//!   artificial damping f = −α_d m v with α_d = 5·10⁴ 1/s (eq. 7.24). The static solution
+//!   does not depend on either.
+//! - Discretization: the grid is fixed at dx = 2 mm; the points refine on the sub-grid of
+//!   n × n points per cell (section 8.4), one point at the centre of each sub-cell of size
+//!   s = dx/n whose centre lies inside the trapezoid. Δt from the CFL estimate (eq. 7.22)
+//!   with safety 0.1, ≈ 7.1·10⁻⁸ s, inside the range 10⁻⁷ to 2·10⁻⁸ s the thesis needed
+//!   (with safety 0.3, Δt ≈ 2.1·10⁻⁷ s, points next to the loaded edge invert for n = 3).
+//!
+//! Measured: the vertical displacement u_y [m] of point A, the top-right corner (48, 60)
+//! mm. A is the top-right corner of the top-right point's sub-cell, carried by that point's
+//! deformation gradient, x_A = x_p + F_p (X_A − X_p) (the convected particle domain of
+//! eq. 10.4): a virtual point that adds no mass (the thesis used control points of very
+//! small volume). References: the thesis MPM result u_y = 10.708 mm with 101 592 points,
+//! and the FEM result of Schröder et al., u_y ≈ 10.6 mm.
+//!
+//! Steady state: the kinetic energy at the end over the stored strain energy, K/W_int, and
+//! the largest change of u_y over the last 20 % of the run relative to u_y.
+//!
+//! Measured (2026-11, `--profile ci`): u_y = 12.403, 11.052, 10.678, 10.583 mm for
+//! n = 2, 4, 8, 16 (1 433 to 92 101 points). u_y falls monotonically and the increments
+//! shrink by ≈ 3.7× per halving of s (second order), so the sequence tends to ≈ 10.55 mm:
+//! 1.2 % below the thesis MPM value at n = 16 and 0.2 % below the FEM value.
+
+use crate::boundary::{NodeSet, VelocityBc};
+use crate::discretize::{fill, Shape};
+use crate::kinematics::Kinematics;
+use crate::solver::{Settings, Solver};
+use materials::NeoHooke;
+use nalgebra::{SVector, Vector2, Vector3};
+use std::sync::Arc;
+use std::time::Instant;
+
+/// Thesis MPM result for u_y(A), 101 592 points (section 8.4, figure 8.9) [m].
+pub const THESIS_U_Y: f64 = 10.708e-3;
+/// FEM result of Schröder et al. [126] for u_y(A) [m].
+pub const FEM_U_Y: f64 = 10.6e-3;
+/// Grid spacing [m].
+pub const SPACING: f64 = 2e-3;
+/// Refinements of the reduced verification and the test: 1 433 and 5 745 points.
+pub const TEST_LEVELS: [usize; 2] = [2, 4];
+/// Measured error at n = 4: +3.2 % against the thesis value.
+pub const TEST_TOLERANCE: f64 = 0.05;
+/// Refinements of `mpw verify --full`: 1 433 to 92 101 points.
+pub const FULL_LEVELS: [usize; 4] = [2, 4, 8, 16];
+/// Measured error at n = 16: −1.2 % against the thesis value, −0.2 % against FEM.
+pub const FULL_TOLERANCE: f64 = 0.02;
+/// Steady state: K/W_int at the end below 0.5 % (measured 3.9·10⁻³ at n = 2 falling to
+/// 1.2·10⁻⁴ at n = 16; what remains is particle velocity the grid does not see)...
+pub const STEADY_KINETIC: f64 = 5e-3;
+/// ... and u_y within 0.2 % of its final value over the last 20 % of the run.
+pub const STEADY_CHANGE: f64 = 2e-3;
+/// Relaxation time [s], 30 / α_d.
+pub const RELAXATION_TIME: f64 = 6e-4;
+/// The load rises smoothly over this time [s] (5 / α_d); a sudden load inverts the
+/// points next to the loaded corners in the first steps once n ≥ 8.
+const LOAD_RAMP: f64 = 1e-4;
+/// Traction p_y [Pa] on the right edge S_t of height 16 mm.
+const TRACTION: f64 = 20e6;
+/// Point A, the top-right corner [m].
+const CORNER: [f64; 2] = [0.048, 0.060];
+
+#[derive(Debug, Clone)]
+pub struct CookResult {
+    /// Points per cell along each axis, n.
+    pub points_per_cell: usize,
+    pub particles: usize,
+    /// Vertical displacement of point A at the end [m].
+    pub u_y: f64,
+    /// K / W_int at the end [-].
+    pub kinetic_ratio: f64,
+    /// max |u_y(t) − u_y(t_end)| / u_y over the last 20 % of the run [-].
+    pub late_change: f64,
+    pub steps: usize,
+    /// Time step [s].
+    pub dt: f64,
+    /// Wall-clock time of the run [s].
+    pub wall: f64,
+}
+
+/// The membrane as a solver ready to run: `n` points per cell along each axis.
+pub fn membrane(n: usize) -> Solver<2> {
+    let mut settings = Settings::<2>::new(Kinematics::PlaneStrain, SPACING);
+    settings.damping = 5e4;
+    settings.safety = 0.1;
+    let mut s = Solver::new(settings);
+    let shape = Shape::Polygon {
+        vertices: vec![
+            Vector2::new(0.0, 0.0),
+            Vector2::new(0.048, 0.044),
+            Vector2::new(0.048, 0.060),
+            Vector2::new(0.0, 0.044),
+        ],
+    };
+    let h = SPACING / n as f64;
+    let points = fill(
+        &shape,
+        Vector2::repeat(h),
+        Vector2::zeros(),
+        Kinematics::PlaneStrain,
+    );
+    s.add_body(
+        "membrane",
+        Arc::new(NeoHooke::new(500e6, 0.35, 100.0)),
+        &points,
+        SVector::zeros(),
+    );
+    s.velocity_bcs
+        .push(VelocityBc::fixed(NodeSet::Below { axis: 0, at: 0.0 }));
+    // the column of points next to S_t
+    let edge: Vec<usize> = (0..s.particles.len())
+        .filter(|&i| s.particles.position[i][0] > CORNER[0] - h)
+        .collect();
+    s.add_traction(&edge, Vector2::new(0.0, TRACTION * 0.016));
+    s
+}
+
+/// Index of the point whose sub-cell has A as its top-right corner.
+fn corner_point(s: &Solver<2>, n: usize) -> usize {
+    let h = SPACING / n as f64;
+    let a = Vector2::from(CORNER);
+    let p = s.nearest_particle(&(a - Vector2::repeat(0.5 * h)));
+    debug_assert!((s.particles.reference_position[p] - a).norm() < 0.75 * h);
+    p
+}
+
+/// u_y of A from the corner point's position and deformation gradient [m].
+fn corner_displacement(s: &Solver<2>, p: usize) -> f64 {
+    let a = Vector3::new(CORNER[0], CORNER[1], 0.0);
+    let x = s.particles.position[p];
+    let x_ref = s.particles.reference_position[p];
+    let d = a - Vector3::new(x_ref[0], x_ref[1], 0.0);
+    let x_a = Vector3::new(x[0], x[1], 0.0) + s.particles.deformation[p] * d;
+    x_a[1] - CORNER[1]
+}
+
+/// Load factor at time `t` [s]: (1 − cos(π t / t_r)) / 2 up to `LOAD_RAMP`, then 1.
+fn load_factor(t: f64) -> f64 {
+    0.5 - 0.5 * (std::f64::consts::PI * (t / LOAD_RAMP).min(1.0)).cos()
+}
+
+/// Relax the membrane with `n` points per cell for `t_end` [s].
+pub fn relax(n: usize, t_end: f64) -> Result<CookResult, crate::SimulationError> {
+    let clock = Instant::now();
+    let mut s = membrane(n);
+    let ts = s.initialize();
+    let load = s.particles.applied_force.clone();
+    let a = corner_point(&s, n);
+    let mut late = Vec::new();
+    while s.time < t_end - 0.5 * ts.dt {
+        let factor = load_factor(s.time);
+        for (f, f0) in s.particles.applied_force.iter_mut().zip(&load) {
+            *f = f0 * factor;
+        }
+        s.step()?;
+        if s.time >= 0.8 * t_end {
+            late.push(corner_displacement(&s, a));
+        }
+    }
+    let u_y = corner_displacement(&s, a);
+    let late_change = late.iter().map(|u| (u - u_y).abs()).fold(0.0, f64::max) / u_y.abs();
+    Ok(CookResult {
+        points_per_cell: n,
+        particles: s.particles.len(),
+        u_y,
+        kinetic_ratio: s.energies.kinetic / s.energies.internal,
+        late_change,
+        steps: s.step,
+        dt: ts.dt,
+        wall: clock.elapsed().as_secs_f64(),
+    })
+}
+
+/// The convergence table: one relaxed run per refinement `n` (points per cell per axis).
+pub fn convergence(levels: &[usize]) -> Result<Vec<CookResult>, crate::SimulationError> {
+    levels.iter().map(|&n| relax(n, RELAXATION_TIME)).collect()
+}
+
+/// The table as text: points, u_y [mm], error against the thesis value, wall time.
+pub fn table(rows: &[CookResult]) -> String {
+    let mut out = format!(
+        "{:>3} {:>8} {:>10} {:>11} {:>11} {:>10} {:>10} {:>8}\n",
+        "n", "points", "u_y [mm]", "vs 10.708", "vs FEM 10.6", "K/W_int", "late du/u", "wall [s]"
+    );
+    for r in rows {
+        out += &format!(
+            "{:>3} {:>8} {:>10.4} {:>+10.2}% {:>+10.2}% {:>10.1e} {:>10.1e} {:>8.1}\n",
+            r.points_per_cell,
+            r.particles,
+            r.u_y * 1e3,
+            100.0 * (r.u_y / THESIS_U_Y - 1.0),
+            100.0 * (r.u_y / FEM_U_Y - 1.0),
+            r.kinetic_ratio,
+            r.late_change,
+            r.wall
+        );
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{load, Simulation};
+
+    #[test]
+    fn corner_displacement_converges_towards_the_thesis_value() {
+        let rows = convergence(&TEST_LEVELS).unwrap();
+        eprintln!("{}", table(&rows));
+        let err: Vec<f64> = rows
+            .iter()
+            .map(|r| (r.u_y / THESIS_U_Y - 1.0).abs())
+            .collect();
+        assert!(err.windows(2).all(|w| w[1] < w[0]), "{err:?}");
+        let finest = rows.last().unwrap();
+        assert!(
+            err[err.len() - 1] < TEST_TOLERANCE,
+            "u_y {} m vs {THESIS_U_Y} m",
+            finest.u_y
+        );
+        for r in &rows {
+            assert!(
+                r.kinetic_ratio < STEADY_KINETIC && r.late_change < STEADY_CHANGE,
+                "{r:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_shipped_scene_is_this_case_with_two_points_per_cell() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../data/scenes/cook_membrane.toml");
+        let Simulation::Planar(scene) = load(&path).unwrap().simulation else {
+            panic!("cook_membrane.toml is not a plane scene");
+        };
+        let case = membrane(2);
+        let (p, q) = (&scene.particles, &case.particles);
+        assert_eq!(p.len(), q.len());
+        assert_eq!(p.position, q.position);
+        assert_eq!(p.mass, q.mass);
+        assert_eq!(p.applied_force, q.applied_force);
+        assert_eq!(scene.velocity_bcs, case.velocity_bcs);
+        assert_eq!(scene.settings.spacing, case.settings.spacing);
+        assert_eq!(scene.settings.damping, case.settings.damping);
+        assert_eq!(scene.settings.safety, case.settings.safety);
+        assert_eq!(
+            scene.blocks[0].material.p_wave_modulus(),
+            case.blocks[0].material.p_wave_modulus()
+        );
+        // the load: 20 MPa on the 16 mm edge
+        let total: f64 = q.applied_force.iter().map(|f| f[1]).sum();
+        assert!((total / 320e3 - 1.0).abs() < 1e-12, "{total}");
+    }
+}
