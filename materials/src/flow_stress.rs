@@ -112,3 +112,105 @@ impl<D: Scalar> FlowStress<D> {
         }
     }
 }
+
+impl FlowStress<f64> {
+    /// The law along a local solve in u = ln Δα (`return_principal`'s hot path): α = α_n
+    /// + e^u, α̇ = e^u/Δt and θ = θ_n frozen, so the thermal factor is computed once and
+    /// the JC rate term 1 + C (u − ln(Δt α̇0)) needs no logarithm. The returned closure
+    /// gives (τ_y, dτ_y/du); it equals `tau_y` to round-off (tested).
+    pub fn along_log_increment(
+        &self,
+        alpha_n: f64,
+        dt: f64,
+        theta: f64,
+        theta0: f64,
+    ) -> impl Fn(f64) -> (f64, f64) + '_ {
+        let thermal = self.thermal_factor(theta, theta0);
+        let ln_dalpha0 = match self {
+            FlowStress::JohnsonCook(p) => (dt * p.alpha_dot0).ln(),
+            FlowStress::Voce(_) => 0.0,
+        };
+        move |u: f64| {
+            let dalpha = u.exp();
+            let alpha = alpha_n + dalpha;
+            match self {
+                FlowStress::Voce(p) => {
+                    let decay = (p.tau0 - p.tau_inf) * (-p.eta * alpha).exp();
+                    (
+                        p.tau_inf + decay + p.h * alpha,
+                        dalpha * (p.h - p.eta * decay),
+                    )
+                }
+                FlowStress::JohnsonCook(p) => {
+                    let power = alpha.powf(p.n);
+                    let hardening = p.a + p.b * power;
+                    let d_hardening = p.b * p.n * power / alpha * dalpha;
+                    let excess = u - ln_dalpha0;
+                    let (rate, d_rate) = if excess > 0.0 {
+                        (1.0 + p.c * excess, p.c)
+                    } else {
+                        (1.0, 0.0)
+                    };
+                    (
+                        hardening * rate * thermal,
+                        (d_hardening * rate + hardening * d_rate) * thermal,
+                    )
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_dual::Dual64;
+
+    #[test]
+    fn along_log_increment_matches_tau_y_and_its_derivative() {
+        let laws = [
+            FlowStress::JohnsonCook(JohnsonCookLaw {
+                a: 800e6,
+                b: 1500e6,
+                n: 0.3,
+                c: 0.03,
+                m: 1.2,
+                alpha_dot0: 1e-3,
+                theta_m: 1800.0,
+            }),
+            FlowStress::Voce(Voce {
+                tau0: 300e6,
+                tau_inf: 450e6,
+                eta: 12.0,
+                h: 1e8,
+            }),
+        ];
+        let (alpha_n, dt, theta, theta0) = (0.05, 1e-5, 400.0, 293.15);
+        for law in &laws {
+            let along = law.along_log_increment(alpha_n, dt, theta, theta0);
+            let dual = law.map(|_, v| Dual64::from(v));
+            // Below and above the rate kink Δα = Δt α̇0 = 1e-8.
+            for dalpha in [1e-10, 3e-9, 2e-8, 1e-4, 0.05] {
+                let u = f64::ln(dalpha);
+                let (tau, dtau_du) = along(u);
+                let d = Dual64::new(dalpha, dalpha); // d/du of e^u
+                let expected = dual.tau_y(
+                    Dual64::from(alpha_n) + d,
+                    d / dt,
+                    Dual64::from(theta),
+                    Dual64::from(theta0),
+                );
+                assert!(
+                    (tau / expected.re - 1.0).abs() < 1e-13,
+                    "τ_y {tau} vs {}",
+                    expected.re
+                );
+                assert!(
+                    (dtau_du - expected.eps).abs() <= 1e-9 * expected.eps.abs() + 1e-6,
+                    "dτ_y/du {dtau_du} vs {}",
+                    expected.eps
+                );
+            }
+        }
+    }
+}
