@@ -13,13 +13,15 @@ use nalgebra::{Const, DimMin, SMatrix, SVector};
 pub const TOL: f64 = 1e-13;
 pub const MAX_ITERATIONS: usize = 60;
 pub const MAX_LOG_STEP: f64 = 5.0;
+/// A full Newton step smaller than this ends the solve without another evaluation.
+pub const CONVERGED_STEP: f64 = 1e-9;
 
 /// Solve r(x) = 0 from `x0`, whose last component is u = ln Δα. `eval` returns r and
-/// ∂r/∂x. Returns the root and the Jacobian there.
+/// ∂r/∂x. Returns the root.
 pub fn solve<const N: usize>(
     mut eval: impl FnMut(&SVector<f64, N>) -> (SVector<f64, N>, SMatrix<f64, N, N>),
     x0: SVector<f64, N>,
-) -> Result<(SVector<f64, N>, SMatrix<f64, N, N>), MaterialError>
+) -> Result<SVector<f64, N>, MaterialError>
 where
     Const<N>: DimMin<Const<N>, Output = Const<N>>,
 {
@@ -33,11 +35,16 @@ where
             });
         }
         if r_norm < TOL {
-            return Ok((x, k));
+            return Ok(x);
         }
         let dx = k.lu().solve(&(-r)).ok_or(MaterialError::Singular {
             what: "return mapping",
         })?;
+        if dx.amax() < CONVERGED_STEP {
+            // Quadratic convergence: the residual after this step is O(|dx|²), far
+            // below TOL, so it need not be evaluated.
+            return Ok(x + dx);
+        }
         let mut step = (MAX_LOG_STEP / dx[N - 1].abs()).min(1.0);
         let mut accepted = false;
         for _ in 0..12 {
@@ -55,7 +62,7 @@ where
         if !accepted {
             // No decrease is possible: the residual sits at round-off level.
             if dx.amax() < 1e-12 {
-                return Ok((x, k));
+                return Ok(x);
             }
             return Err(MaterialError::ReturnMapNotConverged {
                 iterations: MAX_ITERATIONS,
@@ -63,7 +70,7 @@ where
             });
         }
         if (dx * step).amax() < 1e-15 {
-            return Ok((x, k));
+            return Ok(x);
         }
     }
     Err(MaterialError::ReturnMapNotConverged {

@@ -95,7 +95,7 @@ pub fn solve(
             .flow
             .along_log_increment(old.alpha, dt, old.theta, m.thermal.theta0),
     };
-    let (y, _) = local_newton::solve(|y| problem.eval(y), y0)?;
+    let y = local_newton::solve(|y| problem.eval(y), y0)?;
     let dalpha = y[3].exp();
     // exp(−√(3/2) Δα N) = diag(λ_a / λ_a^tr) in the eigenbasis.
     let ratio = Vector3::new(

@@ -81,7 +81,7 @@ pub fn solve(
     dalpha0: f64,
 ) -> Result<(M3<f64>, f64), MaterialError> {
     let x0 = pack(&old.fp_inv, dalpha0.ln());
-    let (x, _) = local_newton::solve(|x| residual_and_jacobian(m, x, f, old, dt), x0)?;
+    let x = local_newton::solve(|x| residual_and_jacobian(m, x, f, old, dt), x0)?;
     let (fp_inv, ln_dalpha) = unpack(&x);
     Ok((fp_inv, old.alpha + ln_dalpha.exp()))
 }
