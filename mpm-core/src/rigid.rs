@@ -183,6 +183,25 @@ impl<const D: usize> RigidBody<D> {
 }
 
 /// Centre and radius of a sphere holding all `vertices`.
+/// A convex body from its face planes, bounded by the sphere around its vertices.
+fn convex<const D: usize>(
+    name: &str,
+    planes: Vec<Plane<D>>,
+    vertices: &[SVector<f64, D>],
+    penalty: f64,
+    friction: f64,
+) -> RigidBody<D> {
+    RigidBody {
+        name: name.into(),
+        planes,
+        motion: Motion::default(),
+        penalty,
+        friction,
+        search_interval: 10,
+        bounds: Some(sphere_around(vertices)),
+    }
+}
+
 fn sphere_around<const D: usize>(vertices: &[SVector<f64, D>]) -> (SVector<f64, D>, f64) {
     let c = vertices.iter().sum::<SVector<f64, D>>() / vertices.len() as f64;
     let r = vertices.iter().map(|v| (v - c).norm()).fold(0.0, f64::max);
@@ -213,16 +232,7 @@ pub fn convex_from_triangles(
             }
         })
         .collect();
-    let bounds = Some(sphere_around(vertices));
-    RigidBody {
-        name: name.into(),
-        planes,
-        motion: Motion::default(),
-        penalty,
-        friction,
-        search_interval: 10,
-        bounds,
-    }
+    convex(name, planes, vertices, penalty, friction)
 }
 
 /// A convex polygon (2D), vertices in either orientation: one plane per edge.
@@ -247,16 +257,7 @@ pub fn convex_from_polygon(
             }
         })
         .collect();
-    let bounds = Some(sphere_around(vertices));
-    RigidBody {
-        name: name.into(),
-        planes,
-        motion: Motion::default(),
-        penalty,
-        friction,
-        search_interval: 10,
-        bounds,
-    }
+    convex(name, planes, vertices, penalty, friction)
 }
 
 /// The same body typed for dimension `E` (a scene knows its dimension only at run time;

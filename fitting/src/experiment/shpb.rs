@@ -149,14 +149,7 @@ impl ShpbExperiment {
     pub fn load(toml_file: &Path) -> Result<ShpbExperiment, ExperimentError> {
         let sidecar = Sidecar::read(toml_file)?;
         let spec: ShpbFile = sidecar.parse()?;
-        if spec.kind.get_ref() != "shpb" {
-            return Err(ExperimentError::WrongKind {
-                at: sidecar.at(spec.kind.span()),
-                key: "kind".into(),
-                found: spec.kind.get_ref().clone(),
-                expected: "shpb".into(),
-            });
-        }
+        sidecar.expect_kind(&spec.kind, "shpb")?;
         let temperature_k =
             sidecar.positive("temperature", &spec.temperature, Dimension::Temperature)?;
         let b = &spec.bar;

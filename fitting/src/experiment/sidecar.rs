@@ -55,6 +55,23 @@ impl Sidecar {
         })
     }
 
+    /// The file's `kind` key must be `expected` ("tensile", "shpb").
+    pub fn expect_kind(
+        &self,
+        kind: &Spanned<String>,
+        expected: &str,
+    ) -> Result<(), ExperimentError> {
+        if kind.get_ref() == expected {
+            return Ok(());
+        }
+        Err(ExperimentError::WrongKind {
+            at: self.at(kind.span()),
+            key: "kind".into(),
+            found: kind.get_ref().clone(),
+            expected: expected.into(),
+        })
+    }
+
     /// A path written in the TOML, relative to the TOML's folder.
     pub fn relative_path(&self, path: &str) -> PathBuf {
         self.file.parent().unwrap_or(Path::new(".")).join(path)

@@ -103,14 +103,7 @@ impl TensileExperiment {
     pub fn load(toml_file: &Path) -> Result<TensileExperiment, ExperimentError> {
         let sidecar = Sidecar::read(toml_file)?;
         let spec: TensileFile = sidecar.parse()?;
-        if spec.kind.get_ref() != "tensile" {
-            return Err(ExperimentError::WrongKind {
-                at: sidecar.at(spec.kind.span()),
-                key: "kind".into(),
-                found: spec.kind.get_ref().clone(),
-                expected: "tensile".into(),
-            });
-        }
+        sidecar.expect_kind(&spec.kind, "tensile")?;
         let temperature_k =
             sidecar.positive("temperature", &spec.temperature, Dimension::Temperature)?;
         let nominal_strain_rate_per_s = sidecar.positive(
