@@ -92,8 +92,5 @@ fn unreachable_stress_is_an_error_with_step_and_time() {
     .unwrap();
     path.controls[0][0] = Control::Stress(Ramp::new(times, target).unwrap());
     let err = driver::run(&m, &path).unwrap_err().to_string();
-    assert!(
-        err.starts_with("step 5 (t = 5e-1 s)"),
-        "got: {err}"
-    );
+    assert!(err.starts_with("step 5 (t = 5e-1 s)"), "got: {err}");
 }
