@@ -6,7 +6,7 @@
 //! - Plastic flow by the implicit exponential map, eq. 4.48:
 //!   Fe = exp(−Δα √(3/2) N) F Fp_n⁻¹, N = dev τ / ‖dev τ‖.
 //! - Adiabatic heating after the return, eq. 4.50 with Kirchhoff flow stress:
-//!   θ = θ_n + γ_TQ/(ρ0 c_θ) Δα τ_y.
+//!   θ = θ_n + γ_TQ/(ρ0 c_θ) Δα τ_y, with τ_y = τ_VM of the returned stress.
 //!
 //! With a `Voce` flow stress this is the rate-independent J2 model (eq. 4.51); with a
 //! `JohnsonCook` flow stress the Johnson-Cook model (eq. 4.52).
@@ -154,9 +154,11 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
         };
         let tau = self.tau(&(f * fp_inv), old.theta);
         let dalpha = alpha - old.alpha;
+        // τ_VM = τ_y at the converged return (φ = 0 holds identically in the parameters,
+        // so their derivatives agree too) and costs no transcendental functions.
         let heating = self.thermal.gamma_tq / (self.elastic.rho * self.thermal.c_theta)
             * dalpha
-            * self.tau_y(alpha, dalpha, dt, old.theta);
+            * von_mises(&tau);
         let new = State {
             fp_inv,
             alpha,
