@@ -71,7 +71,3 @@ pub fn re<D: Scalar>(a: &M3<D>) -> M3<f64> {
 pub fn lift<D: Scalar>(a: &M3<f64>) -> M3<D> {
     a.map(|x| c::<D>(x))
 }
-
-pub fn is_finite(a: &M3<f64>) -> bool {
-    a.iter().all(|x| x.is_finite())
-}
