@@ -18,6 +18,9 @@ pub fn eps<const N: usize>(x: &DualSVec64<N>) -> SVector<f64, N> {
     x.eps.0.unwrap_or_else(SVector::zeros)
 }
 
+/// dσ_ij/dF_kl as a 9×9 matrix (row 3i+j, column 3k+l).
+pub type Tangent = SMatrix<f64, 9, 9>;
+
 /// Cauchy stress, its consistent tangent dσ_ij/dF_kl as a 9×9 matrix (row index 3i+j,
 /// column index 3k+l) and the new state, for one update from `old`.
 pub fn tangent<M: Model<f64>>(
@@ -25,13 +28,13 @@ pub fn tangent<M: Model<f64>>(
     f: &M3<f64>,
     dt: f64,
     old: &State<f64>,
-) -> Result<(M3<f64>, SMatrix<f64, 9, 9>, State<f64>), MaterialError> {
+) -> Result<(M3<f64>, Tangent, State<f64>), MaterialError> {
     type D9 = DualSVec64<9>;
     let m = model.map_params(|_, v| c::<D9>(v));
     let fd = M3::from_fn(|i, j| seed::<9>(f[(i, j)], 3 * i + j));
-    let old_d = old.map(|v| c::<D9>(v));
+    let old_d = old.map(c::<D9>);
     let (sigma, new) = m.update(&fd, dt, &old_d)?;
-    let mut d = SMatrix::<f64, 9, 9>::zeros();
+    let mut d = Tangent::zeros();
     for i in 0..3 {
         for j in 0..3 {
             d.set_row(3 * i + j, &eps(&sigma[(i, j)]).transpose());

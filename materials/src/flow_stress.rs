@@ -114,8 +114,8 @@ impl<D: Scalar> FlowStress<D> {
 }
 
 impl FlowStress<f64> {
-    /// The law along a local solve in u = ln Δα (`return_principal`'s hot path): α = α_n
-    /// + e^u, α̇ = e^u/Δt and θ = θ_n frozen, so the thermal factor is computed once and
+    /// The law along a local solve in u = ln Δα (`return_principal`'s hot path):
+    /// α = α_n + e^u, α̇ = e^u/Δt and θ = θ_n frozen, so the thermal factor is computed once and
     /// the JC rate term 1 + C (u − ln(Δt α̇0)) needs no logarithm. The returned closure
     /// gives (τ_y, dτ_y/du); it equals `tau_y` to round-off (tested).
     pub fn along_log_increment(

@@ -67,7 +67,7 @@ fn residual_and_jacobian(
     type D10 = DualSVec64<10>;
     let m_d: ElastoPlastic<D10> = m.lift();
     let f_d: M3<D10> = lift(f);
-    let old_d = old.map(|v| c::<D10>(v));
+    let old_d = old.map(c::<D10>);
     jacobian(|xd| residual(&m_d, &xd, &f_d, &old_d, dt), x)
 }
 

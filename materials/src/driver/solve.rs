@@ -37,7 +37,11 @@ fn validate(path: &LoadPath) -> Result<Vec<(usize, usize)>, DriverError> {
     if path.times.len() < 2 {
         return Err(DriverError::Path("needs at least two times".into()));
     }
-    if path.times.windows(2).any(|w| !(w[1] > w[0])) {
+    if path
+        .times
+        .windows(2)
+        .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+    {
         return Err(DriverError::Path(
             "times must be strictly increasing".into(),
         ));
