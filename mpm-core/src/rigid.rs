@@ -183,6 +183,21 @@ impl<const D: usize> RigidBody<D> {
 }
 
 /// Centre and radius of a sphere holding all `vertices`.
+/// The face plane through `point` with normal ±`normal` pointing away from `centroid`.
+fn outward<const D: usize>(
+    point: SVector<f64, D>,
+    normal: SVector<f64, D>,
+    centroid: &SVector<f64, D>,
+) -> Plane<D> {
+    let n = normal.normalize();
+    let normal = if n.dot(&(point - centroid)) < 0.0 {
+        -n
+    } else {
+        n
+    };
+    Plane { point, normal }
+}
+
 /// A convex body from its face planes, bounded by the sphere around its vertices.
 fn convex<const D: usize>(
     name: &str,
@@ -222,14 +237,7 @@ pub fn convex_from_triangles(
         .iter()
         .map(|t| {
             let (a, b, c) = (vertices[t[0]], vertices[t[1]], vertices[t[2]]);
-            let mut n = (b - a).cross(&(c - a)).normalize();
-            if n.dot(&(a - centroid)) < 0.0 {
-                n = -n;
-            }
-            Plane {
-                point: a,
-                normal: n,
-            }
+            outward(a, (b - a).cross(&(c - a)), &centroid)
         })
         .collect();
     convex(name, planes, vertices, penalty, friction)
@@ -246,15 +254,11 @@ pub fn convex_from_polygon(
     let planes = (0..vertices.len())
         .map(|i| {
             let (a, b) = (vertices[i], vertices[(i + 1) % vertices.len()]);
-            let e = b - a;
-            let mut n = SVector::<f64, 2>::new(e[1], -e[0]).normalize();
-            if n.dot(&(a - centroid)) < 0.0 {
-                n = -n;
-            }
-            Plane {
-                point: a,
-                normal: n,
-            }
+            outward(
+                a,
+                SVector::<f64, 2>::new(b[1] - a[1], a[0] - b[0]),
+                &centroid,
+            )
         })
         .collect();
     convex(name, planes, vertices, penalty, friction)

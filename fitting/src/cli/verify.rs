@@ -7,7 +7,6 @@ use crate::chart::{LineChart, Series};
 use crate::heatmap::HeatMap;
 use anyhow::{bail, Result};
 use materials::studies::{self, figure_4_5, iso_error};
-use materials::{load_material, AnyModel, ElastoPlastic};
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
@@ -23,16 +22,9 @@ pub struct Args {
     pub materials: PathBuf,
 }
 
-fn elasto_plastic(path: &Path) -> Result<ElastoPlastic> {
-    match load_material(path)?.model {
-        AnyModel::ElastoPlastic(m) => Ok(m),
-        AnyModel::NeoHooke(_) => bail!("{}: expected an elasto-plastic model", path.display()),
-    }
-}
-
 /// Thesis figure 4.5: σ_xx against engineering strain for the four rate/temperature pairs.
 fn figure_4_5_chart(materials: &Path, out: &Path) -> Result<()> {
-    let m = elasto_plastic(&materials.join("aisi_4340.toml"))?;
+    let m = studies::elasto_plastic(materials, "aisi_4340.toml")?;
     let mut chart = LineChart::new(
         "Johnson-Cook AISI 4340, uniaxial tension then hold (thesis fig. 4.5)",
         "engineering strain ε_xx [-]",
@@ -55,14 +47,8 @@ fn figure_4_5_chart(materials: &Path, out: &Path) -> Result<()> {
 
 fn iso_error_charts(materials: &Path, out: &Path) -> Result<()> {
     let multiples: Vec<f64> = (0..=20).map(|k| 5.0 * k as f64).collect();
-    let mut j2 = elasto_plastic(&materials.join("al6061_t6.toml"))?;
-    j2.flow = materials::FlowStress::Voce(materials::flow_stress::Voce {
-        tau0: 300e6,
-        tau_inf: 450e6,
-        eta: 12.0,
-        h: 1e8,
-    });
-    let jc = elasto_plastic(&materials.join("42crmo4_qt660.toml"))?;
+    let j2 = studies::j2_voce(materials)?;
+    let jc = studies::elasto_plastic(materials, "42crmo4_qt660.toml")?;
     for (name, m) in [("j2", j2), ("johnson_cook", jc)] {
         let map = iso_error::run(&m, &multiples);
         HeatMap {

@@ -12,11 +12,30 @@ use crate::verify::CaseResult;
 use crate::AnyModel;
 use std::path::Path;
 
-fn elasto_plastic(dir: &Path, file: &str) -> Result<ElastoPlastic, ParamFileError> {
-    match load_material(dir.join(file))?.model {
+/// The elasto-plastic model of parameter file `file` in `dir`.
+pub fn elasto_plastic(dir: &Path, file: &str) -> Result<ElastoPlastic, ParamFileError> {
+    let path = dir.join(file);
+    match load_material(&path)?.model {
         AnyModel::ElastoPlastic(m) => Ok(m),
-        AnyModel::NeoHooke(_) => panic!("{file} is not an elasto-plastic model"),
+        AnyModel::NeoHooke(_) => Err(ParamFileError::Field {
+            file: path,
+            field: "model".into(),
+            problem: "expected \"j2\" or \"johnson-cook\" for this study".into(),
+        }),
     }
+}
+
+/// The J2 model of the studies: Voce saturation and linear hardening on the 6061-T6
+/// elastic constants, so every term of eq. 4.51 is exercised.
+pub fn j2_voce(dir: &Path) -> Result<ElastoPlastic, ParamFileError> {
+    let mut j2 = elasto_plastic(dir, "al6061_t6.toml")?;
+    j2.flow = FlowStress::Voce(Voce {
+        tau0: 300e6,
+        tau_inf: 450e6,
+        eta: 12.0,
+        h: 1e8,
+    });
+    Ok(j2)
 }
 
 /// Every materials row of `mpw verify`, on the parameter sets in `dir`
@@ -26,15 +45,7 @@ pub fn verify_cases(dir: &Path, full: bool) -> Result<Vec<CaseResult>, ParamFile
         AnyModel::NeoHooke(m) => m,
         AnyModel::ElastoPlastic(_) => panic!("aisi_52100.toml is not Neo-Hooke"),
     };
-    let mut j2 = elasto_plastic(dir, "al6061_t6.toml")?;
-    // Voce saturation and linear hardening on the 6061 elastic constants, so every term
-    // of eq. 4.51 is exercised.
-    j2.flow = FlowStress::Voce(Voce {
-        tau0: 300e6,
-        tau_inf: 450e6,
-        eta: 12.0,
-        h: 1e8,
-    });
+    let j2 = j2_voce(dir)?;
     let jc = elasto_plastic(dir, "42crmo4_qt660.toml")?;
     let with = |m: &ElastoPlastic, rm| ElastoPlastic {
         return_map: rm,
