@@ -15,8 +15,10 @@ use crate::plasticity::ElastoPlastic;
 use crate::tensor::{inverse, M3};
 use nalgebra::{SMatrix, SVector, SymmetricEigen, Vector3};
 
-/// Scalar Newton steps of the first guess for ln Δα.
-const SCALAR_GUESS_STEPS: usize = 2;
+/// Most scalar Newton steps of the first guess for ln Δα, and the step that ends them
+/// (the error left is then O(step²), which the 4×4 Newton removes in one step).
+const SCALAR_GUESS_STEPS: usize = 12;
+const SCALAR_GUESS_TOL: f64 = 1e-5;
 
 /// The fixed data of one local problem.
 struct Problem<T: Fn(f64) -> (f64, f64)> {
@@ -70,34 +72,35 @@ pub fn solve(
     let fe_trial = f * old.fp_inv;
     let be_trial = fe_trial * fe_trial.transpose();
     let eigen = SymmetricEigen::new(be_trial);
-    let eps_trial = eigen.eigenvalues.map(|l2| 0.5 * l2.ln());
-    // First guess: radial return in logarithmic strain, where the Neo-Hooke deviator is
-    // ≈ 2G dev ε (the trial Kirchhoff stress grows like e^{2ε} and overestimates Δα at
-    // large increments): q^tr − 3G Δα = τ_y(Δα). When that model is clearly plastic, a
-    // few scalar Newton steps in u = ln Δα include the rate term (1.2× the static yield
-    // at 10³ 1/s), which otherwise leaves the 4×4 solve far from its root; near the
-    // elastic limit the perfectly plastic estimate is kept.
-    let dev_trial = eps_trial.add_scalar(-eps_trial.mean());
-    let sqrt_3_2 = 1.5f64.sqrt();
+    let b_trial = eigen.eigenvalues;
+    let eps_trial = b_trial.map(|l2| 0.5 * l2.ln());
     let g = m.elastic.shear_modulus();
+    let k = 1.5f64.sqrt();
+    // First guess: the radial return of the Neo-Hooke deviator s = G dev be, linearized in
+    // Δα: b_a = b_a^tr e^{−2k Δα n_a} gives dq/dΔα = −3 G̃ with G̃ = G Σ n_a² b_a^tr
+    // (k = √(3/2), Σ n_a = 0), so q^tr − 3 G̃ Δα = τ_y(α_n + Δα, Δα/Δt, θ_n) is solved by
+    // scalar Newton steps in u = ln Δα, with the rate and hardening terms of the flow
+    // stress. `dalpha0` = (q^tr − τ_y(α_n, 0))/(3G) is the rate-free upper bound it starts from.
+    // q^tr − τ_y(Δα) is a small difference of large numbers, so q^tr must be the Neo-Hooke
+    // value: a log-strain (Hencky) estimate is off by O(ε_e) in q and by percents in Δα.
+    let s_trial = b_trial.add_scalar(-b_trial.mean()) * g;
+    let q_trial = k * s_trial.norm();
+    let n_trial = s_trial / s_trial.norm();
+    let g_tilde = g * n_trial.component_mul(&n_trial).dot(&b_trial);
     let tau_y = m
         .flow
         .along_log_increment(old.alpha, dt, old.theta, m.thermal.theta0);
-    let q_trial = sqrt_3_2 * 2.0 * g * dev_trial.norm();
-    let dalpha_log = (q_trial - m.tau_y(old.alpha, 0.0, dt, old.theta)) / (3.0 * g);
-    let u = if dalpha_log > 0.0 {
-        let mut u = dalpha_log.min(dalpha0).ln();
-        for _ in 0..SCALAR_GUESS_STEPS {
-            let (t, dt_du) = tau_y(u);
-            let dalpha = u.exp();
-            let step = (q_trial - 3.0 * g * dalpha - t) / (3.0 * g * dalpha + dt_du);
-            u += step.clamp(-1.0, 1.0);
+    let mut u = (dalpha0 * g / g_tilde).ln();
+    for _ in 0..SCALAR_GUESS_STEPS {
+        let (t, dt_du) = tau_y(u);
+        let dalpha = u.exp();
+        let step = (q_trial - 3.0 * g_tilde * dalpha - t) / (3.0 * g_tilde * dalpha + dt_du);
+        u += step.clamp(-1.0, 1.0);
+        if step.abs() < SCALAR_GUESS_TOL {
+            break;
         }
-        u
-    } else {
-        dalpha0.ln()
-    };
-    let shift = dev_trial * (sqrt_3_2 * u.exp() / dev_trial.norm());
+    }
+    let shift = n_trial * (k * u.exp());
     let y0 = SVector::<f64, 4>::new(
         eps_trial[0] - shift[0],
         eps_trial[1] - shift[1],
