@@ -113,18 +113,29 @@ impl<D: Scalar> FlowStress<D> {
     }
 }
 
+/// The flow stress at one plastic increment of a local solve (see `along_log_increment`).
+#[derive(Debug, Clone, Copy)]
+pub struct AtIncrement {
+    /// Δα = e^u [-]
+    pub dalpha: f64,
+    /// τ_y [Pa]
+    pub tau_y: f64,
+    /// dτ_y/du [Pa]
+    pub dtau_y_du: f64,
+}
+
 impl FlowStress<f64> {
     /// The law along a local solve in u = ln Δα (`return_principal`'s hot path):
     /// α = α_n + e^u, α̇ = e^u/Δt and θ = θ_n frozen, so the thermal factor is computed once and
     /// the JC rate term 1 + C (u − ln(Δt α̇0)) needs no logarithm. The returned closure
-    /// gives (τ_y, dτ_y/du); it equals `tau_y` to round-off (tested).
+    /// gives Δα, τ_y and dτ_y/du; it equals `tau_y` to round-off (tested).
     pub fn along_log_increment(
         &self,
         alpha_n: f64,
         dt: f64,
         theta: f64,
         theta0: f64,
-    ) -> impl Fn(f64) -> (f64, f64) + '_ {
+    ) -> impl Fn(f64) -> AtIncrement + '_ {
         let thermal = self.thermal_factor(theta, theta0);
         let ln_dalpha0 = match self {
             FlowStress::JohnsonCook(p) => (dt * p.alpha_dot0).ln(),
@@ -133,7 +144,7 @@ impl FlowStress<f64> {
         move |u: f64| {
             let dalpha = u.exp();
             let alpha = alpha_n + dalpha;
-            match self {
+            let (tau_y, dtau_y_du) = match self {
                 FlowStress::Voce(p) => {
                     let decay = (p.tau0 - p.tau_inf) * (-p.eta * alpha).exp();
                     (
@@ -156,6 +167,11 @@ impl FlowStress<f64> {
                         (d_hardening * rate + hardening * d_rate) * thermal,
                     )
                 }
+            };
+            AtIncrement {
+                dalpha,
+                tau_y,
+                dtau_y_du,
             }
         }
     }
@@ -192,7 +208,9 @@ mod tests {
             // Below and above the rate kink Δα = Δt α̇0 = 1e-8.
             for dalpha in [1e-10, 3e-9, 2e-8, 1e-4, 0.05] {
                 let u = f64::ln(dalpha);
-                let (tau, dtau_du) = along(u);
+                let at = along(u);
+                assert_eq!(at.dalpha, u.exp());
+                let (tau, dtau_du) = (at.tau_y, at.dtau_y_du);
                 let d = Dual64::new(dalpha, dalpha); // d/du of e^u
                 let expected = dual.tau_y(
                     Dual64::from(alpha_n) + d,

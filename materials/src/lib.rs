@@ -23,6 +23,7 @@ pub mod return_principal;
 pub mod return_reference;
 pub mod scalar;
 pub mod studies;
+pub mod sym_eigen;
 pub mod tensor;
 pub mod verify;
 

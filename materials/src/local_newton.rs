@@ -16,15 +16,27 @@ pub const MAX_LOG_STEP: f64 = 5.0;
 /// A full Newton step smaller than this ends the solve without another evaluation.
 pub const CONVERGED_STEP: f64 = 1e-9;
 
-/// Solve r(x) = 0 from `x0`, whose last component is u = ln Δα. `eval` returns r and
-/// ∂r/∂x. Returns the root.
-pub fn solve<const N: usize>(
-    mut eval: impl FnMut(&SVector<f64, N>) -> (SVector<f64, N>, SMatrix<f64, N, N>),
-    x0: SVector<f64, N>,
-) -> Result<SVector<f64, N>, MaterialError>
+/// ∂r/∂x of a local problem: whatever solves J dx = b (a dense matrix by LU, or a
+/// structured one by its own elimination).
+pub trait Jacobian<const N: usize> {
+    fn solve(&self, b: &SVector<f64, N>) -> Option<SVector<f64, N>>;
+}
+
+impl<const N: usize> Jacobian<N> for SMatrix<f64, N, N>
 where
     Const<N>: DimMin<Const<N>, Output = Const<N>>,
 {
+    fn solve(&self, b: &SVector<f64, N>) -> Option<SVector<f64, N>> {
+        self.lu().solve(b)
+    }
+}
+
+/// Solve r(x) = 0 from `x0`, whose last component is u = ln Δα. `eval` returns r and
+/// ∂r/∂x. Returns the root.
+pub fn solve<const N: usize, J: Jacobian<N>>(
+    mut eval: impl FnMut(&SVector<f64, N>) -> (SVector<f64, N>, J),
+    x0: SVector<f64, N>,
+) -> Result<SVector<f64, N>, MaterialError> {
     let mut x = x0;
     let (mut r, mut k) = eval(&x);
     for _ in 0..MAX_ITERATIONS {
@@ -37,7 +49,7 @@ where
         if r_norm < TOL {
             return Ok(x);
         }
-        let dx = k.lu().solve(&(-r)).ok_or(MaterialError::Singular {
+        let dx = k.solve(&(-r)).ok_or(MaterialError::Singular {
             what: "return mapping",
         })?;
         if dx.amax() < CONVERGED_STEP {
