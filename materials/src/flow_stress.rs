@@ -125,6 +125,19 @@ pub struct AtIncrement {
 }
 
 impl FlowStress<f64> {
+    /// The u = ln Δα at which the JC rate term alone takes up the overstress ratio
+    /// q/τ_y0 > 1 of a trial state (τ_y0 = τ_y(α_n, 0, θ_n)): 1 + C (u − ln(Δt α̇0)) = q/τ_y0.
+    /// Hardening and the elastic relaxation q − 3G̃ Δα only lower the root of the return,
+    /// so this bounds its ln Δα from above. `None` for a law without a rate term.
+    pub fn log_increment_bound(&self, overstress: f64, dt: f64) -> Option<f64> {
+        match self {
+            FlowStress::JohnsonCook(p) if p.c > 0.0 => {
+                Some((dt * p.alpha_dot0).ln() + (overstress - 1.0) / p.c)
+            }
+            _ => None,
+        }
+    }
+
     /// The law along a local solve in u = ln Δα (`return_principal`'s hot path):
     /// α = α_n + e^u, α̇ = e^u/Δt and θ = θ_n frozen, so the thermal factor is computed once and
     /// the JC rate term 1 + C (u − ln(Δt α̇0)) needs no logarithm. The returned closure
@@ -230,5 +243,51 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The rate-only increment bounds the root of the scalar return q − 3G e^u = τ_y(u)
+    /// (found by bisection) from above, for small and large overstress.
+    #[test]
+    fn log_increment_bound_lies_above_the_scalar_return() {
+        let law = FlowStress::JohnsonCook(JohnsonCookLaw {
+            a: 90e6,
+            b: 292e6,
+            n: 0.31,
+            c: 0.025,
+            m: 1.09,
+            alpha_dot0: 1.0,
+            theta_m: 1356.0,
+        });
+        let (alpha_n, dt, theta, theta0, three_g) = (0.05, 3e-8, 400.0, 293.15, 3.0 * 46e9);
+        let along = law.along_log_increment(alpha_n, dt, theta, theta0);
+        let tau_y0 = law.tau_y(alpha_n, 0.0, theta, theta0);
+        for overstress in [1.001, 1.05, 1.3, 3.0] {
+            let q = overstress * tau_y0;
+            let f = |u: f64| q - three_g * u.exp() - along(u).tau_y;
+            let (mut below, mut above) = (-60.0, (q / three_g).ln());
+            assert!(f(below) > 0.0 && f(above) < 0.0);
+            for _ in 0..200 {
+                let mid = 0.5 * (below + above);
+                if f(mid) > 0.0 {
+                    below = mid;
+                } else {
+                    above = mid;
+                }
+            }
+            let bound = law
+                .log_increment_bound(overstress, dt)
+                .expect("JC has a rate term");
+            assert!(
+                below <= bound,
+                "q/τ_y0 = {overstress}: root {below} above bound {bound}"
+            );
+        }
+        let voce = FlowStress::Voce(Voce {
+            tau0: 300e6,
+            tau_inf: 450e6,
+            eta: 12.0,
+            h: 1e8,
+        });
+        assert_eq!(voce.log_increment_bound(1.1, dt), None);
     }
 }

@@ -135,17 +135,22 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
         }
         let fe_trial = f * old.fp_inv;
         let tau_trial = self.tau(&fe_trial, old.theta);
-        let phi_trial = von_mises(&tau_trial) - self.tau_y(old.alpha, c(0.0), dt, old.theta);
+        let tau_y0 = self.tau_y(old.alpha, c(0.0), dt, old.theta);
+        let phi_trial = von_mises(&tau_trial) - tau_y0;
         if phi_trial.re() <= 0.0 {
             return Ok((tau_trial / j, *old));
         }
         let model = self.re();
         let (f_re, old_re) = (re(f), old.re());
-        // Perfectly plastic estimate of Δα (radial return with 3G) as the first guess.
-        let dalpha0 = phi_trial.re() / (3.0 * model.elastic.shear_modulus());
         let (fp_inv_re, alpha_re) = match self.return_map {
-            ReturnMap::Reference => return_reference::solve(&model, &f_re, &old_re, dt, dalpha0)?,
-            ReturnMap::Principal => return_principal::solve(&model, &f_re, &old_re, dt, dalpha0)?,
+            ReturnMap::Reference => {
+                // Perfectly plastic estimate of Δα (radial return with 3G) as the first guess.
+                let dalpha0 = phi_trial.re() / (3.0 * model.elastic.shear_modulus());
+                return_reference::solve(&model, &f_re, &old_re, dt, dalpha0)?
+            }
+            ReturnMap::Principal => {
+                return_principal::solve(&model, &f_re, &old_re, dt, tau_y0.re())?
+            }
         };
         let (fp_inv, alpha) = if D::NDERIV == 0 {
             (lift(&fp_inv_re), c::<D>(alpha_re))

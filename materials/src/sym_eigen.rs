@@ -107,13 +107,23 @@ mod tests {
         let residual = (a * e.vectors - e.vectors * Matrix3::from_diagonal(&e.values)).norm();
         assert!(residual <= tol * scale, "residual {residual:e} for {a}");
         let orthogonality = (e.vectors.transpose() * e.vectors - Matrix3::identity()).norm();
-        assert!(orthogonality <= tol, "orthogonality {orthogonality:e} for {a}");
+        assert!(
+            orthogonality <= tol,
+            "orthogonality {orthogonality:e} for {a}"
+        );
         let mut ours: Vec<f64> = e.values.iter().copied().collect();
-        let mut theirs: Vec<f64> = SymmetricEigen::new(*a).eigenvalues.iter().copied().collect();
+        let mut theirs: Vec<f64> = SymmetricEigen::new(*a)
+            .eigenvalues
+            .iter()
+            .copied()
+            .collect();
         ours.sort_by(f64::total_cmp);
         theirs.sort_by(f64::total_cmp);
         for (x, y) in ours.iter().zip(&theirs) {
-            assert!((x - y).abs() <= tol * scale, "eigenvalues {ours:?} vs {theirs:?}");
+            assert!(
+                (x - y).abs() <= tol * scale,
+                "eigenvalues {ours:?} vs {theirs:?}"
+            );
         }
     }
 
@@ -124,7 +134,12 @@ mod tests {
 
     #[test]
     fn distinct_repeated_and_nearly_repeated_eigenvalues() {
-        let rotations = [[0.0, 0.0, 0.0], [0.3, -1.1, 0.7], [2.0, 0.1, -0.4], [1e-9, 0.0, 0.0]];
+        let rotations = [
+            [0.0, 0.0, 0.0],
+            [0.3, -1.1, 0.7],
+            [2.0, 0.1, -0.4],
+            [1e-9, 0.0, 0.0],
+        ];
         let spectra = [
             [1.0, 2.0, 3.0],
             [1.0, 1.0, 2.0],
