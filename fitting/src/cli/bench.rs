@@ -116,10 +116,19 @@ pub fn run(args: Args) -> Result<()> {
         Ok(Material::update(m, &f_pre, dt, &Material::initial_state(m))?.1)
     };
     row("neo-hooke", &neo_hooke, &f_elastic, dt, &virgin(&neo_hooke))?;
-    for (label, file) in [("j2", "al6061_t6.toml"), ("johnson-cook", "42crmo4_qt660.toml")] {
+    for (label, file) in [
+        ("j2", "al6061_t6.toml"),
+        ("johnson-cook", "42crmo4_qt660.toml"),
+    ] {
         let fast = elasto_plastic(&dir.join(file), ReturnMap::Principal)?;
         let reference = elasto_plastic(&dir.join(file), ReturnMap::Reference)?;
-        row(&format!("{label} elastic step"), &fast, &f_elastic, dt, &virgin(&fast))?;
+        row(
+            &format!("{label} elastic step"),
+            &fast,
+            &f_elastic,
+            dt,
+            &virgin(&fast),
+        )?;
         row(
             &format!("{label} plastic step, fast (principal) return"),
             &fast,
