@@ -34,6 +34,9 @@ pub struct Args {
     /// Thread counts to measure.
     #[arg(long, value_delimiter = ',', default_value = "1,2")]
     pub threads: Vec<usize>,
+    /// Cases to run: a (Neo-Hooke block), b (JC cylinder between platens).
+    #[arg(long, value_delimiter = ',', default_value = "a,b")]
+    pub cases: Vec<char>,
     /// Material file of the compression case.
     #[arg(long, default_value = "data/materials/ofhc_copper.toml")]
     pub material: PathBuf,
@@ -160,9 +163,16 @@ fn measure(
 
 pub fn run(args: Args) -> Result<()> {
     let copper: Arc<dyn Material> = Arc::new(materials::load_material(&args.material)?.model);
-    let cases: [(&str, Box<dyn Fn() -> Solver<3>>, f64); 2] = [
-        ("(a) Neo-Hooke block", Box::new(block), 5e6),
+    for case in &args.cases {
+        anyhow::ensure!(
+            matches!(case, 'a' | 'b'),
+            "--cases: unknown case '{case}' (expected a or b)"
+        );
+    }
+    let cases: [(char, &str, Box<dyn Fn() -> Solver<3>>, f64); 2] = [
+        ('a', "(a) Neo-Hooke block", Box::new(block), 5e6),
         (
+            'b',
             "(b) JC cylinder between platens",
             Box::new(move || compression(copper.clone())),
             1.5e6,
@@ -178,7 +188,7 @@ pub fn run(args: Args) -> Result<()> {
         "{:<34} {:>9} {:>8} {:>16} {:>10} {:>10} {:>8}",
         "case", "particles", "threads", "particle-steps/s", "material", "transfers", "plastic"
     );
-    for (name, make, target) in &cases {
+    for (_, name, make, target) in cases.iter().filter(|c| args.cases.contains(&c.0)) {
         for &threads in &args.threads {
             let (m, n, ts) = measure(make.as_ref(), threads, &args)?;
             println!(
