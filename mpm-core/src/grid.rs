@@ -182,7 +182,7 @@ mod tests {
         let x = Vector2::new(0.1, 0.3);
         let (base, xi) = g.locate(&x);
         assert_eq!(g.cell_of(&x), [2, 1]);
-        assert_eq!(base, 2 + 1 * 5);
+        assert_eq!(base, 2 + 5); // cell (2, 1) with 5 nodes per row
         assert!((xi - Vector2::new(0.2, 0.2)).norm() < 1e-12);
         let p = g.node_position(base + g.corner_offsets()[3]);
         assert!((p - Vector2::new(0.5, 0.5)).norm() < 1e-12);

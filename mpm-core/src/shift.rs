@@ -24,7 +24,7 @@ impl<const D: usize> GridShift<D> {
     }
 
     /// The origin displacement for the next step [m].
-    pub fn next(&mut self) -> SVector<f64, D> {
+    pub fn sample(&mut self) -> SVector<f64, D> {
         SVector::from_fn(|i, _| self.amplitude[i] * self.rng.gen_range(-1.0..1.0))
     }
 }

@@ -372,7 +372,7 @@ impl<const D: usize> Solver<D> {
 
     /// Fit the grid to the particles' bounding box (shifted origin if grid shift is on).
     fn refit_grid(&mut self) {
-        let shift = self.shift.as_mut().map_or(SVector::zeros(), |s| s.next());
+        let shift = self.shift.as_mut().map_or(SVector::zeros(), |s| s.sample());
         self.grid.origin = self.settings.origin + shift;
         let x = &self.particles.position;
         let (lo, hi) = x
@@ -661,8 +661,8 @@ impl<const D: usize> Solver<D> {
                         let mut vg = SVector::<f64, D>::zeros();
                         let mut a = SVector::<f64, D>::zeros();
                         let mut l = SMatrix::<f64, D, D>::zeros();
-                        for c in 0..corners(D) {
-                            let node = &grid.nodes[base + offsets[c]];
+                        for (c, offset) in offsets.iter().enumerate().take(corners(D)) {
+                            let node = &grid.nodes[base + offset];
                             vg += node.velocity * w.n[c];
                             a += node.acceleration * w.n[c];
                             l += node.velocity * w.grad[c].transpose();

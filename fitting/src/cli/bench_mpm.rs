@@ -107,6 +107,14 @@ fn compression(material: Arc<dyn Material>) -> Solver<3> {
     s
 }
 
+/// One throughput case: its key for `--cases`, label, scene and 2-thread target.
+struct Case {
+    key: char,
+    name: &'static str,
+    make: Box<dyn Fn() -> Solver<3>>,
+    target: f64,
+}
+
 struct Measured {
     rate: f64,
     material_share: f64,
@@ -169,14 +177,19 @@ pub fn run(args: Args) -> Result<()> {
             "--cases: unknown case '{case}' (expected a or b)"
         );
     }
-    let cases: [(char, &str, Box<dyn Fn() -> Solver<3>>, f64); 2] = [
-        ('a', "(a) Neo-Hooke block", Box::new(block), 5e6),
-        (
-            'b',
-            "(b) JC cylinder between platens",
-            Box::new(move || compression(copper.clone())),
-            1.5e6,
-        ),
+    let cases = [
+        Case {
+            key: 'a',
+            name: "(a) Neo-Hooke block",
+            make: Box::new(block),
+            target: 5e6,
+        },
+        Case {
+            key: 'b',
+            name: "(b) JC cylinder between platens",
+            make: Box::new(move || compression(copper.clone())),
+            target: 1.5e6,
+        },
     ];
     let bytes = mpm_core::Particles::<3>::BYTES_PER_PARTICLE
         + std::mem::size_of::<materials::State<f64>>()
@@ -188,7 +201,10 @@ pub fn run(args: Args) -> Result<()> {
         "{:<34} {:>9} {:>8} {:>16} {:>10} {:>10} {:>8}",
         "case", "particles", "threads", "particle-steps/s", "material", "transfers", "plastic"
     );
-    for (_, name, make, target) in cases.iter().filter(|c| args.cases.contains(&c.0)) {
+    for Case {
+        name, make, target, ..
+    } in cases.iter().filter(|c| args.cases.contains(&c.key))
+    {
         for &threads in &args.threads {
             let (m, n, ts) = measure(make.as_ref(), threads, &args)?;
             println!(

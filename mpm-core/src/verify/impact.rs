@@ -169,36 +169,6 @@ pub fn plastic_impact(n: usize, end: f64) -> Result<ImpactResult, SimulationErro
     })
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// n = 50 (dx = 1.2 mm, the coarsest row of table 9.2) to 80 µs: the target has the
-    /// table's point count, the depth changes by less than 2 % after 40 µs and the bullet
-    /// has lost more than 95 % of its kinetic energy by then.
-    #[test]
-    fn coarse_impact_depth_settles_by_40_us() {
-        let r = plastic_impact(50, 80e-6).unwrap();
-        for t in [0.0, 10e-6, 20e-6, 40e-6, 60e-6, 80e-6] {
-            let (t, d, k) = r.at(t);
-            eprintln!(
-                "t = {:.0} µs: depth {:.3} mm, K = {:.4e} J/m",
-                t * 1e6,
-                d * 1e3,
-                k
-            );
-        }
-        eprintln!("{} disk points, {:.1} s", r.disk_points, r.wall_time);
-        // table 9.2, n = 50: 9436 points in all, 2836 of them in the disk
-        assert_eq!(r.particles - r.disk_points, 9436 - 2836);
-        assert!((r.disk_points as f64 - 2836.0).abs() <= 0.02 * 2836.0);
-        let (d40, d_end) = (r.at(40e-6).1, r.history.last().unwrap().1);
-        assert!((d_end - d40).abs() <= 0.02 * d_end, "{d40} -> {d_end}");
-        let k0 = r.history[0].2;
-        assert!(r.at(40e-6).2 <= 0.05 * k0, "{}", r.at(40e-6).2 / k0);
-    }
-}
-
 /// `mpw verify` rows: n = 50 (reduced) or n = 80 (full), to 80 µs.
 pub fn cases(full: bool, out: &mut Vec<CaseResult>) {
     let n = if full { 80 } else { 50 };
@@ -233,5 +203,35 @@ pub fn cases(full: bool, out: &mut Vec<CaseResult>) {
             ));
         }
         Err(e) => out.push(CaseResult::holds(format!("{name}: {e}"), false)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// n = 50 (dx = 1.2 mm, the coarsest row of table 9.2) to 80 µs: the target has the
+    /// table's point count, the depth changes by less than 2 % after 40 µs and the bullet
+    /// has lost more than 95 % of its kinetic energy by then.
+    #[test]
+    fn coarse_impact_depth_settles_by_40_us() {
+        let r = plastic_impact(50, 80e-6).unwrap();
+        for t in [0.0, 10e-6, 20e-6, 40e-6, 60e-6, 80e-6] {
+            let (t, d, k) = r.at(t);
+            eprintln!(
+                "t = {:.0} µs: depth {:.3} mm, K = {:.4e} J/m",
+                t * 1e6,
+                d * 1e3,
+                k
+            );
+        }
+        eprintln!("{} disk points, {:.1} s", r.disk_points, r.wall_time);
+        // table 9.2, n = 50: 9436 points in all, 2836 of them in the disk
+        assert_eq!(r.particles - r.disk_points, 9436 - 2836);
+        assert!((r.disk_points as f64 - 2836.0).abs() <= 0.02 * 2836.0);
+        let (d40, d_end) = (r.at(40e-6).1, r.history.last().unwrap().1);
+        assert!((d_end - d40).abs() <= 0.02 * d_end, "{d40} -> {d_end}");
+        let k0 = r.history[0].2;
+        assert!(r.at(40e-6).2 <= 0.05 * k0, "{}", r.at(40e-6).2 / k0);
     }
 }
