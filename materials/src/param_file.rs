@@ -23,10 +23,10 @@ use toml::{Table, Value};
 
 #[derive(Debug, Error)]
 pub enum ParamFileError {
-    #[error("{file}: cannot read: {source}")]
+    #[error("{file}: cannot read: {reason}")]
     Io {
         file: PathBuf,
-        source: std::io::Error,
+        reason: std::io::Error,
     },
     #[error("{file}: TOML syntax: {message}")]
     Syntax { file: PathBuf, message: String },
@@ -345,9 +345,9 @@ pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFile
 /// Load and validate a parameter file.
 pub fn load_material(path: impl AsRef<Path>) -> Result<MaterialFile, ParamFileError> {
     let path = path.as_ref();
-    let text = std::fs::read_to_string(path).map_err(|source| ParamFileError::Io {
+    let text = std::fs::read_to_string(path).map_err(|reason| ParamFileError::Io {
         file: path.to_path_buf(),
-        source,
+        reason,
     })?;
     parse_material(&text, path)
 }

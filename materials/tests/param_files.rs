@@ -102,3 +102,16 @@ fn bad_fields_are_named_with_the_allowed_range() {
         );
     }
 }
+
+/// A missing file names the path and the OS reason once: the reason is in the message and
+/// not also a `source()` that error reporters append again.
+#[test]
+fn unreadable_file_names_path_and_reason_once() {
+    let err = load_material("no/such/material.toml").unwrap_err();
+    let message = err.to_string();
+    assert!(
+        message.starts_with("no/such/material.toml: cannot read: "),
+        "{message}"
+    );
+    assert!(std::error::Error::source(&err).is_none(), "{message}");
+}

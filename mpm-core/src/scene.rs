@@ -38,10 +38,10 @@ use thiserror::Error;
 
 #[derive(Debug, Error)]
 pub enum SceneError {
-    #[error("{file}: cannot read: {source}")]
+    #[error("{file}: cannot read: {reason}")]
     Io {
         file: PathBuf,
-        source: std::io::Error,
+        reason: std::io::Error,
     },
     #[error("{file}: {message}")]
     Syntax { file: PathBuf, message: String },
@@ -359,9 +359,9 @@ impl Check<'_> {
 
 /// Read and validate a scene file.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+    let text = std::fs::read_to_string(path).map_err(|reason| SceneError::Io {
         file: path.into(),
-        source,
+        reason,
     })?;
     let spec: SceneFile = toml::from_str(&text).map_err(|e| SceneError::Syntax {
         file: path.into(),

@@ -21,10 +21,10 @@ impl fmt::Display for Location {
 
 #[derive(Debug, Error)]
 pub enum ExperimentError {
-    #[error("{}: cannot read: {source}", file.display())]
+    #[error("{}: cannot read: {reason}", file.display())]
     Io {
         file: PathBuf,
-        source: std::io::Error,
+        reason: std::io::Error,
     },
     /// TOML syntax, a missing or unknown key, or a value of the wrong type.
     #[error("{at}: {message}")]

@@ -26,9 +26,9 @@ pub(crate) struct Sidecar {
 
 impl Sidecar {
     pub fn read(file: &Path) -> Result<Sidecar, ExperimentError> {
-        let text = std::fs::read_to_string(file).map_err(|source| ExperimentError::Io {
+        let text = std::fs::read_to_string(file).map_err(|reason| ExperimentError::Io {
             file: file.to_path_buf(),
-            source,
+            reason,
         })?;
         Ok(Sidecar {
             file: file.to_path_buf(),

@@ -16,9 +16,9 @@ pub(crate) struct CsvTable {
 
 impl CsvTable {
     pub fn read(file: &Path) -> Result<CsvTable, ExperimentError> {
-        let text = std::fs::read_to_string(file).map_err(|source| ExperimentError::Io {
+        let text = std::fs::read_to_string(file).map_err(|reason| ExperimentError::Io {
             file: file.to_path_buf(),
-            source,
+            reason,
         })?;
         let mut header: Option<(usize, Vec<String>)> = None;
         let mut rows = Vec::new();
