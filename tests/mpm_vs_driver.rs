@@ -145,6 +145,7 @@ fn sample(s: &Solver<3>) -> Sample {
 fn compress(material: Arc<dyn Material>, scheme: Scheme) -> Vec<Sample> {
     let mut settings = Settings::<3>::new(Kinematics::Solid, CELL);
     settings.scheme = scheme;
+    settings.bulk_viscosity = None;
     let mut solver = Solver::new(settings);
     let extent = Vector3::new(NX as f64, NX as f64, NZ as f64) * CELL;
     let points = fill(
@@ -175,6 +176,7 @@ fn compress(material: Arc<dyn Material>, scheme: Scheme) -> Vec<Sample> {
             at: extent[2],
         },
         velocity: [None, None, Some(-RATE * extent[2])],
+        one_sided: false,
     });
     let ts = solver.initialize();
     let t_end = STRAIN / RATE;

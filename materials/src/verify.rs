@@ -12,6 +12,9 @@ pub struct CaseResult {
     /// What `measured` is compared with `reference` by, in words (e.g. `rel 1e-6`).
     pub tolerance: String,
     pub passed: bool,
+    /// Reported only: neither a pass nor a failure (a known gap, or a value without a
+    /// reference).
+    pub info: bool,
 }
 
 impl CaseResult {
@@ -24,6 +27,7 @@ impl CaseResult {
             reference,
             tolerance: format!("rel {tol:.0e}"),
             passed,
+            info: false,
         }
     }
 
@@ -36,6 +40,7 @@ impl CaseResult {
             reference,
             tolerance: format!("abs {tol:.1e}"),
             passed,
+            info: false,
         }
     }
 
@@ -48,6 +53,7 @@ impl CaseResult {
             reference: 0.0,
             tolerance: format!("<= {bound:.1e}"),
             passed,
+            info: false,
         }
     }
 
@@ -59,6 +65,21 @@ impl CaseResult {
             reference: 1.0,
             tolerance: "holds".into(),
             passed: ok,
+            info: false,
+        }
+    }
+}
+
+impl CaseResult {
+    /// A value reported against its reference without a pass/fail verdict.
+    pub fn info(name: impl Into<String>, measured: f64, reference: f64) -> Self {
+        CaseResult {
+            name: name.into(),
+            measured,
+            reference,
+            tolerance: "-".into(),
+            passed: true,
+            info: true,
         }
     }
 }
@@ -72,7 +93,11 @@ impl fmt::Display for CaseResult {
             self.measured,
             self.reference,
             self.tolerance,
-            if self.passed { "pass" } else { "FAIL" }
+            match (self.info, self.passed) {
+                (true, _) => "info",
+                (false, true) => "pass",
+                (false, false) => "FAIL",
+            }
         )
     }
 }

@@ -3,7 +3,16 @@
 //! - Grid velocity conditions on node sets (eq. 7.28): the chosen components of
 //!   v_{n+1/2}^I are set to v̄ and those of a_n^I to zero (constant prescribed velocity);
 //!   fixed supports set every component, rolling supports and symmetry planes only the
-//!   normal one.
+//!   normal one; the constrained acceleration is zero (eq. 7.28), so the points keep the
+//!   velocity the condition took from the node.
+//! - One-sided conditions (a frictionless rigid wall that the body may leave): on the
+//!   nodes below (above) a plane, a component is set to v̄ only when the free velocity
+//!   would move into the wall, v_i < v̄ (v_i > v̄); otherwise the node moves freely. The
+//!   points feel the wall: the constrained acceleration is the one that takes p/m to v̄,
+//!   (v̄ − p_I/m_I)/Δt, so the layer that hit the wall stops (with eq. 7.28 the bottom
+//!   layer of a Taylor bar kept −200 m/s while it sat on the wall). Two-sided conditions
+//!   keep eq. 7.28: at a symmetry plane p/m is a one-sided average of the points' field,
+//!   and the reaction form biased a homogeneous compression by 1.3e-3 (issue 8 note).
 //! - Spring conditions on particles near a boundary (eq. 12.1):
 //!   f_MP = −κ_BC ((x_MP)_i − (X_MP)_i) in the chosen directions i [N], which keep working
 //!   when the grid moves under a grid shift.
@@ -44,6 +53,8 @@ impl<const D: usize> NodeSet<D> {
 pub struct VelocityBc<const D: usize> {
     pub nodes: NodeSet<D>,
     pub velocity: [Option<f64>; D],
+    /// Only stop motion into the wall (needs `Below` or `Above` nodes).
+    pub one_sided: bool,
 }
 
 impl<const D: usize> VelocityBc<D> {
@@ -52,6 +63,7 @@ impl<const D: usize> VelocityBc<D> {
         VelocityBc {
             nodes,
             velocity: [Some(0.0); D],
+            one_sided: false,
         }
     }
 
@@ -62,6 +74,34 @@ impl<const D: usize> VelocityBc<D> {
         VelocityBc {
             nodes: NodeSet::Plane { axis, at },
             velocity,
+            one_sided: false,
+        }
+    }
+
+    /// A frictionless rigid wall at x_axis = at that the body (on the side `above` of it)
+    /// may leave: one-sided zero normal velocity on the nodes beyond the plane.
+    pub fn wall(axis: usize, at: f64, above: bool) -> Self {
+        let mut velocity = [None; D];
+        velocity[axis] = Some(0.0);
+        VelocityBc {
+            nodes: if above {
+                NodeSet::Below { axis, at }
+            } else {
+                NodeSet::Above { axis, at }
+            },
+            velocity,
+            one_sided: true,
+        }
+    }
+
+    /// Whether component `v_free` of the free nodal velocity is to be set to `target`.
+    #[inline]
+    pub fn acts(&self, v_free: f64, target: f64) -> bool {
+        match (self.one_sided, self.nodes) {
+            (false, _) => true,
+            (true, NodeSet::Below { .. }) => v_free < target,
+            (true, NodeSet::Above { .. }) => v_free > target,
+            (true, _) => true,
         }
     }
 }

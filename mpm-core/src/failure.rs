@@ -17,6 +17,12 @@ pub enum Cause {
     LeftDomain { position: Vec<f64> },
     #[error("energy blow-up: total energy {energy:e} J exceeds {limit:e} J (blow-up factor times the energy supplied)")]
     EnergyBlowUp { energy: f64, limit: f64 },
+    #[error("speed {speed:.4e} m/s exceeds {limit:.4e} m/s (twice the fastest prescribed or initial speed plus the wave speed): the run has gone unstable, most likely near a free surface or contact with too few points per cell or too large a time step")]
+    SpeedLimit { speed: f64, limit: f64 },
+    #[error("{distance:.4e} m outside the initial extent of the bodies (limit {limit:.4e} m, its diagonal): the point has been thrown off, an instability")]
+    Escaped { distance: f64, limit: f64 },
+    #[error("energy error {error:.4e} J exceeds {limit:.4e} J (the energy-error fraction of the energy supplied): the integration is gaining energy, an instability (reduce time.safety)")]
+    EnergyError { error: f64, limit: f64 },
 }
 
 #[derive(Debug, Clone, PartialEq, Error)]

@@ -23,6 +23,8 @@ pub fn floor_i64(s: f64) -> i64 {
 #[derive(Debug, Clone, Copy)]
 pub struct Node<const D: usize> {
     pub mass: f64,
+    /// Mass of the heaviest point that reaches the node [kg] (for the mass cutoff).
+    pub heaviest: f64,
     pub momentum: SVector<f64, D>,
     pub force: SVector<f64, D>,
     pub velocity: SVector<f64, D>,
@@ -32,6 +34,7 @@ pub struct Node<const D: usize> {
 impl<const D: usize> Node<D> {
     pub const EMPTY: Self = Node {
         mass: 0.0,
+        heaviest: 0.0,
         momentum: SVector::from_array_storage(nalgebra::ArrayStorage([[0.0; D]; 1])),
         force: SVector::from_array_storage(nalgebra::ArrayStorage([[0.0; D]; 1])),
         velocity: SVector::from_array_storage(nalgebra::ArrayStorage([[0.0; D]; 1])),

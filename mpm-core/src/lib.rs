@@ -22,6 +22,8 @@ pub mod shift;
 pub mod solver;
 pub mod sum;
 pub mod timestep;
+pub mod viscosity;
+pub mod watchdog;
 
 pub use boundary::{NodeSet, SpringBc, VelocityBc};
 pub use failure::{Cause, SimulationError};
@@ -32,6 +34,7 @@ pub use particles::Particles;
 pub use rigid::RigidBody;
 pub use solver::{Energies, RunError, Scheme, Settings, Solver};
 pub use timestep::TimeStep;
+pub use viscosity::BulkViscosity;
 pub mod output;
 pub mod run;
 pub mod scene;

@@ -7,14 +7,16 @@
 //! ```toml
 //! kinematics = "plane-strain"      # "plane-strain" | "axisymmetric" | "3d"
 //! [grid]                           # spacing [m], origin [m], shift amplitudes [m], seed
-//! [time]                           # end [s], dt [s] (optional), safety, scheme = "usl"|"usf"|"musl"
-//! [solver]                         # damping [1/s], mass_cutoff, body_force [m/s²], domain, blowup_factor
+//! [time]                           # end [s], dt [s] (optional), safety, scheme = "musl" (default)|"usl"|"usf"
+//! [solver]                         # damping [1/s], mass_cutoff, body_force [m/s²], domain, blowup_factor,
+//!                                  # bulk_viscosity = [C1, C2] (default [0.06, 1.5]; [0, 0] for none)
 //! [[materials]]                    # name, file = "../materials/x.toml" or neo_hooke = {E, nu, rho}
 //! [[bodies]]                       # name, material, shape = {type = "box"|"disk"|"sphere"|"cylinder"|"polygon", ...},
 //!                                  # particles_per_cell, velocity
 //! [[rigid_bodies]]                 # name, shape = {type = "half-space"|"box"|"polygon"|"triangles", ...},
 //!                                  # penalty, friction, search_interval, translation = [[t, u...]], rotation
-//! [[velocity_bcs]]                 # nodes = {plane|below|above = "x", at}, fixed = ["x", ...], value = [...]
+//! [[velocity_bcs]]                 # nodes = {plane|below|above = "x", at}, fixed = ["x", ...], value = [...],
+//!                                  # one_sided = true (a wall the body may leave; below/above nodes)
 //! [[springs]]                      # region = {min, max}, directions, stiffness
 //! [[tractions]]                    # region = {min, max}, force [N]
 //! [[control_points]]               # name, position
@@ -28,6 +30,7 @@ use crate::rigid::{
     convex_from_polygon, convex_from_triangles, recast, Motion, RigidBody, Rotation, Table,
 };
 use crate::solver::{Scheme, Settings, Solver};
+use crate::viscosity::BulkViscosity;
 use materials::{load_material, Material, NeoHooke};
 use nalgebra::{SVector, Unit, Vector3};
 use serde::Deserialize;
@@ -104,6 +107,7 @@ pub struct SolverSpec {
     pub body_force: Option<Vec<f64>>,
     pub domain: Option<BoxSpec>,
     pub blowup_factor: Option<f64>,
+    pub bulk_viscosity: Option<[f64; 2]>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -228,6 +232,8 @@ pub struct VelocityBcSpec {
     pub nodes: NodeSetSpec,
     pub fixed: Vec<String>,
     pub value: Option<Vec<f64>>,
+    #[serde(default)]
+    pub one_sided: bool,
 }
 
 #[derive(Debug, Deserialize)]
@@ -429,7 +435,7 @@ fn build<const D: usize>(
     if let Some(s) = spec.time.safety {
         settings.safety = check.positive("time.safety", s)?;
     }
-    settings.scheme = match spec.time.scheme.as_deref().unwrap_or("usl") {
+    settings.scheme = match spec.time.scheme.as_deref().unwrap_or("musl") {
         "usl" => Scheme::Usl,
         "usf" => Scheme::Usf,
         "musl" => Scheme::Musl,
@@ -455,6 +461,12 @@ fn build<const D: usize>(
     }
     if let Some(f) = sv.blowup_factor {
         settings.blowup_factor = check.positive("solver.blowup_factor", f)?;
+    }
+    if let Some([linear, quadratic]) = sv.bulk_viscosity {
+        check.non_negative("solver.bulk_viscosity[0]", linear)?;
+        check.non_negative("solver.bulk_viscosity[1]", quadratic)?;
+        settings.bulk_viscosity =
+            (linear > 0.0 || quadratic > 0.0).then_some(BulkViscosity { linear, quadratic });
     }
     let mut solver = Solver::new(settings);
 
@@ -699,6 +711,10 @@ fn build<const D: usize>(
         solver.add_rigid_body(body);
     }
 
+    let shifted = solver
+        .settings
+        .grid_shift
+        .is_some_and(|(a, _)| a.iter().any(|x| *x > 0.0));
     for (k, bc) in spec.velocity_bcs.iter().enumerate() {
         let field = format!("velocity_bcs[{k}]");
         let n = &bc.nodes;
@@ -730,7 +746,25 @@ fn build<const D: usize>(
         for (a, v) in bc.fixed.iter().zip(values) {
             velocity[check.axis::<D>(&format!("{field}.fixed"), a)?] = Some(v);
         }
-        solver.velocity_bcs.push(VelocityBc { nodes, velocity });
+        if bc.one_sided && matches!(nodes, NodeSet::Plane { .. }) {
+            return Err(check.err(
+                format!("{field}.one_sided"),
+                "a one-sided wall needs `below` or `above` nodes (the side the body is not on)",
+            ));
+        }
+        if shifted {
+            return Err(check.err(
+                format!("{field}"),
+                "velocity conditions act on grid nodes, and the grid shift (grid.shift) moves \
+                 the nodes off the plane, so the wall would move with the grid; use [[springs]] \
+                 (eq. 12.1) or a rigid half-space in [[rigid_bodies]] instead",
+            ));
+        }
+        solver.velocity_bcs.push(VelocityBc {
+            nodes,
+            velocity,
+            one_sided: bc.one_sided,
+        });
     }
 
     let inside = |solver: &Solver<D>, lo: SVector<f64, D>, hi: SVector<f64, D>| -> Vec<usize> {

@@ -11,8 +11,8 @@
 //! - `Musl`: as USL, but after the particle velocities are updated they are mapped to the
 //!   grid again and L is taken from that smoothed velocity field.
 //!
-//! Nodes with mass below the cutoff are not accelerated (v = p/m, a = 0); empty nodes
-//! get zero velocity. The scatter of
+//! Nodes lighter than the cutoff fraction of the heaviest point that reaches them are not
+//! accelerated (v = p/m, a = 0); empty nodes get zero velocity. The scatter of
 //! particles to nodes runs in parallel without locks: particles are bucketed into slabs of
 //! cells along the last axis, slabs of one colour (even or odd) touch disjoint node
 //! ranges, and each slab adds its particles in index order, so the sums do not depend on
@@ -30,6 +30,8 @@ use crate::shape::{corners, linear};
 use crate::shift::GridShift;
 use crate::sum::fixed_sum;
 use crate::timestep::{self, TimeStep};
+use crate::viscosity::BulkViscosity;
+use crate::watchdog::Watchdog;
 use materials::Material;
 use nalgebra::{Matrix3, SMatrix, SVector};
 use rayon::prelude::*;
@@ -56,12 +58,6 @@ pub struct Settings<const D: usize> {
     pub body_force: SVector<f64, D>,
     /// Artificial damping α_d [1/s] (eq. 7.24).
     pub damping: f64,
-    /// Nodes lighter than this fraction of the lightest particle are not accelerated:
-    /// they keep v = p/m and a = 0. Their f/m would be huge (the force of a point near the
-    /// far side of a cell does not shrink with its shape function value), which makes the
-    /// USL unstable when a point nears a cell face. `initialize` raises it to the
-    /// stability limit (c Δt / 2h)² of `timestep::node_mass_cutoff` when that is larger.
-    pub mass_cutoff: f64,
     /// Safety factor on the CFL and spring limits.
     pub safety: f64,
     /// Fixed time step [s] instead of the estimate.
@@ -72,6 +68,22 @@ pub struct Settings<const D: usize> {
     pub grid_shift: Option<(SVector<f64, D>, u64)>,
     /// A run fails when K + W_int exceeds this factor times the energy supplied.
     pub blowup_factor: f64,
+    /// Nodes lighter than this fraction of the heaviest point that reaches them are not
+    /// accelerated: their f/m would be huge (the force of a point near the far side of a
+    /// cell does not shrink with its shape function value), which makes the USL unstable
+    /// when a point nears a cell face. `initialize` raises it to the stability limit
+    /// (c Δt / 2h)² of `timestep::node_mass_cutoff` when that is larger. The fraction is
+    /// of the node's own points, not of the lightest point of the model: axisymmetric
+    /// points weigh 2π r A ρ, so near the rim they are heavier than on the axis by R/r,
+    /// and a cutoff from the lightest point let rim nodes with 1/100 of their points'
+    /// mass be accelerated (USL failed there under refinement, issue 8).
+    pub mass_cutoff: f64,
+    /// A run fails when the energy error exceeds this fraction of the energy supplied
+    /// (module `watchdog`).
+    pub energy_error_fraction: f64,
+    /// Artificial bulk viscosity added to the stress (module `viscosity`); `None` for
+    /// none.
+    pub bulk_viscosity: Option<BulkViscosity>,
 }
 
 impl<const D: usize> Settings<D> {
@@ -84,18 +96,29 @@ impl<const D: usize> Settings<D> {
         );
         Settings {
             kinematics,
-            scheme: Scheme::Usl,
+            scheme: Scheme::Musl,
             spacing: SVector::repeat(spacing),
             origin: SVector::zeros(),
             body_force: SVector::zeros(),
             damping: 0.0,
-            mass_cutoff: 1e-3,
             safety: 0.3,
             dt: None,
             domain: None,
             grid_shift: None,
             blowup_factor: 10.0,
+            mass_cutoff: 1e-3,
+            energy_error_fraction: 0.25,
+            bulk_viscosity: Some(BulkViscosity::STANDARD),
         }
+    }
+
+    /// The thesis's algorithm as its benchmarks run it: USL (algorithm 6) and no bulk
+    /// viscosity. The defaults (MUSL with bulk viscosity) are for impact: USL fails when a
+    /// free surface of a fast body crosses a node plane, and without viscosity the ringing
+    /// after an impact drives an axisymmetric axis past yield (issue 8 note).
+    pub fn thesis_scheme(&mut self) {
+        self.scheme = Scheme::Usl;
+        self.bulk_viscosity = None;
     }
 }
 
@@ -162,6 +185,10 @@ pub struct Solver<const D: usize> {
     pub dt: f64,
     pub energies: Energies,
     shift: Option<GridShift<D>>,
+    watchdog: Option<Watchdog<D>>,
+    /// Nodes lighter than this fraction of the heaviest point that reaches them are not
+    /// accelerated (they keep v = p/m and a = 0): the larger of `Settings::mass_cutoff`
+    /// and the stability limit (c Δt / 2h)² of `timestep::node_mass_cutoff`.
     mass_cutoff: f64,
     scratch: Scratch<D>,
 }
@@ -186,6 +213,7 @@ impl<const D: usize> Solver<D> {
             velocity_bcs.push(VelocityBc {
                 nodes: NodeSet::Below { axis: 0, at: 0.0 },
                 velocity,
+                one_sided: false,
             });
         }
         Solver {
@@ -202,6 +230,7 @@ impl<const D: usize> Solver<D> {
             dt: 0.0,
             energies: Energies::default(),
             shift,
+            watchdog: None,
             mass_cutoff: 0.0,
             scratch: Scratch::default(),
         }
@@ -292,10 +321,32 @@ impl<const D: usize> Solver<D> {
         );
         self.dt = ts.dt;
         let stable = timestep::node_mass_cutoff(self.grid.min_spacing(), speed, ts.dt);
-        self.mass_cutoff = self.settings.mass_cutoff.max(stable) * lightest;
+        self.mass_cutoff = self.settings.mass_cutoff.max(stable);
         self.scratch.force = vec![SVector::zeros(); n];
         self.scratch.grid_velocity = vec![SVector::zeros(); n];
         self.scratch.work = vec![0.0; n];
+        let v_ref = self
+            .particles
+            .velocity
+            .iter()
+            .map(|v| v.norm())
+            .chain(
+                self.velocity_bcs
+                    .iter()
+                    .flat_map(|b| b.velocity.iter().flatten().map(|v| v.abs())),
+            )
+            .fold(0.0, f64::max);
+        let c_max = self
+            .blocks
+            .iter()
+            .map(|b| b.wave_speed())
+            .fold(0.0, f64::max);
+        self.watchdog = Some(Watchdog::new(
+            &self.particles.position,
+            self.grid.min_spacing(),
+            (v_ref, c_max, self.settings.body_force.norm()),
+            self.settings.energy_error_fraction,
+        ));
         let k0 = self.kinetic_energy();
         self.energies = Energies {
             kinetic: k0,
@@ -474,6 +525,7 @@ impl<const D: usize> Solver<D> {
         grid.nodes.par_iter_mut().for_each(|n| {
             if mass {
                 n.mass = 0.0;
+                n.heaviest = 0.0;
             }
             if momentum {
                 n.momentum = SVector::zeros();
@@ -549,6 +601,7 @@ impl<const D: usize> Solver<D> {
                         let n = w.n[c];
                         if mass {
                             node.mass += n * m;
+                            node.heaviest = node.heaviest.max(m);
                         }
                         if momentum {
                             node.momentum += mv * n;
@@ -584,7 +637,7 @@ impl<const D: usize> Solver<D> {
                         continue;
                     }
                     let v_old = n.momentum / n.mass;
-                    if accelerate && n.mass > cutoff {
+                    if accelerate && n.mass > cutoff * n.heaviest {
                         let damping = n.momentum * alpha;
                         n.acceleration = (n.force - damping) / n.mass;
                         n.velocity = v_old + n.acceleration * dt;
@@ -601,6 +654,9 @@ impl<const D: usize> Solver<D> {
                         if bc.nodes.contains(&x, &meta.spacing) {
                             for (i, v) in bc.velocity.iter().enumerate() {
                                 if let Some(v) = v {
+                                    if !bc.acts(n.velocity[i], *v) {
+                                        continue;
+                                    }
                                     if accelerate {
                                         // work of the reaction impulse m (v̄ − v) on v̄
                                         let dw = n.mass * (v - n.velocity[i]) * v;
@@ -608,7 +664,12 @@ impl<const D: usize> Solver<D> {
                                         w.2 += dw.abs();
                                     }
                                     n.velocity[i] = *v;
-                                    n.acceleration[i] = 0.0;
+                                    n.acceleration[i] = if bc.one_sided {
+                                        // what takes p/m to v̄: the points feel the wall
+                                        (v - v_old[i]) / dt
+                                    } else {
+                                        0.0
+                                    };
                                 }
                             }
                         }
@@ -634,12 +695,14 @@ impl<const D: usize> Solver<D> {
         let grid = &self.grid;
         let offsets = grid.corner_offsets();
         let axisymmetric = self.settings.kinematics == Kinematics::Axisymmetric;
+        let (viscosity, cell) = (self.settings.bulk_viscosity, grid.min_spacing());
         let p = &mut self.particles;
         let s = &mut self.scratch;
         let mut first_failure: Option<(usize, Cause)> = None;
         for block in &mut self.blocks {
             let r = block.range.clone();
             let material = &*block.material;
+            let wave_speed = block.wave_speed();
             let failure = (
                 &p.position[r.clone()],
                 &p.reference_position[r.clone()],
@@ -698,9 +761,14 @@ impl<const D: usize> Solver<D> {
                             return Some((i, Cause::InvertedDeformation { det_f: det }));
                         }
                         match material.update(&f_new, dt, state) {
-                            Ok((sigma_new, state_new)) => {
+                            Ok((mut sigma_new, state_new)) => {
                                 let vol_new = det * v0;
                                 let d = (l3 + l3.transpose()) * 0.5;
+                                if let Some(q) = viscosity {
+                                    let rho = material.density() / det;
+                                    let q = q.pressure(rho, wave_speed, cell, d.trace());
+                                    sigma_new -= Matrix3::identity() * q;
+                                }
                                 *work = 0.5 * (*sigma * *vol + sigma_new * vol_new).dot(&d) * dt;
                                 *f = f_new;
                                 *vol = vol_new;
@@ -785,6 +853,15 @@ impl<const D: usize> Solver<D> {
                     limit,
                 },
             ));
+        }
+        if let Some(w) = &self.watchdog {
+            if let Some(cause) = w.check_energy(e.error(), e.supplied) {
+                return Err(self.failure(None, cause));
+            }
+            let p = &self.particles;
+            if let Some((i, cause)) = w.check_points(&p.position, &p.velocity, self.time) {
+                return Err(self.failure(Some(i), cause));
+            }
         }
         Ok(())
     }

@@ -8,7 +8,9 @@
 //! only the share N of a point's mass m (the point near the far face of the cell) has
 //! m_I = N m but a stiffness that does not shrink with N: f_I = −σ V ∇N_I with
 //! |∇N_I| ≈ 1/h, so K_II ≈ ρ c² V / h² and ω² = K_II / m_I ≈ c² / (h² N). The leapfrog
-//! needs ω Δt ≤ 2, i.e. N ≥ (c Δt / (2 h))²: lighter nodes must not be accelerated.
+//! needs ω Δt ≤ 2, i.e. N ≥ (c Δt / (2 h))²: lighter nodes must not be accelerated. N is
+//! the node's mass over that of the heaviest point reaching it (the stiffness comes from
+//! the points, and in an axisymmetric model their masses differ by R/r).
 
 use std::fmt;
 

@@ -44,7 +44,10 @@ pub struct Args {
 
 /// (a): a 40 × 40 × 40 point Neo-Hooke block (steel-like) spinning about z.
 fn block() -> Solver<3> {
-    let mut s = Solver::new(Settings::<3>::new(Kinematics::Solid, 0.01));
+    // USL without bulk viscosity, as the throughput targets were set
+    let mut settings = Settings::<3>::new(Kinematics::Solid, 0.01);
+    settings.thesis_scheme();
+    let mut s = Solver::new(settings);
     let points = fill(
         &Shape::Box {
             min: Vector3::zeros(),
@@ -72,7 +75,10 @@ fn block() -> Solver<3> {
 fn compression(material: Arc<dyn Material>) -> Solver<3> {
     let (r, h) = (0.005, 0.01);
     let rate = 20.0 / h;
-    let mut s = Solver::new(Settings::<3>::new(Kinematics::Solid, 0.000_461));
+    // USL without bulk viscosity, as the throughput targets were set
+    let mut settings = Settings::<3>::new(Kinematics::Solid, 0.000_461);
+    settings.thesis_scheme();
+    let mut s = Solver::new(settings);
     let shape = Shape::Cylinder {
         start: Vector3::zeros(),
         end: Vector3::new(0.0, 0.0, h),

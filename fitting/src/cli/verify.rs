@@ -129,11 +129,13 @@ pub fn run(args: Args) -> Result<()> {
         println!("charts written to {}", dir.display());
     }
     let failed = cases.iter().filter(|c| !c.passed).count();
+    let info = cases.iter().filter(|c| c.info).count();
     println!(
-        "{} cases, {} passed, {} failed",
+        "{} cases, {} passed, {} failed, {} reported (info)",
         cases.len(),
-        cases.len() - failed,
-        failed
+        cases.len() - failed - info,
+        failed,
+        info
     );
     if failed > 0 {
         bail!("{failed} verification case(s) failed");

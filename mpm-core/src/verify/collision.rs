@@ -31,6 +31,7 @@ pub fn collide<const D: usize>(spacing: f64) -> CollisionResult {
         Kinematics::Solid
     };
     let mut settings = Settings::<D>::new(kinematics, spacing);
+    settings.thesis_scheme();
     settings.safety = 0.2;
     let mut s = Solver::new(settings);
     let material = Arc::new(NeoHooke::new(1000.0, 0.3, 1000.0));

@@ -92,6 +92,7 @@ pub struct CookResult {
 /// The membrane as a solver ready to run: `n` points per cell along each axis.
 pub fn membrane(n: usize) -> Solver<2> {
     let mut settings = Settings::<2>::new(Kinematics::PlaneStrain, SPACING);
+    settings.thesis_scheme();
     settings.damping = 5e4;
     settings.safety = 0.1;
     let mut s = Solver::new(settings);

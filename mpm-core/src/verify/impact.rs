@@ -132,7 +132,11 @@ pub fn plastic_impact(n: usize, end: f64) -> Result<ImpactResult, SimulationErro
         } else {
             NodeSet::Above { axis, at }
         };
-        solver.velocity_bcs.push(VelocityBc { nodes, velocity });
+        solver.velocity_bcs.push(VelocityBc {
+            nodes,
+            velocity,
+            one_sided: false,
+        });
     }
     solver.initialize();
     let range = solver.blocks[bullet].range.clone();

@@ -37,6 +37,7 @@ pub struct LibraResult {
 pub fn libra(penalty: f64, per_edge: usize) -> Result<LibraResult, crate::SimulationError> {
     let s = 1.0 / per_edge as f64;
     let mut settings = Settings::<3>::new(Kinematics::Solid, 2.0 * s);
+    settings.thesis_scheme();
     settings.dt = Some(1e-3);
     settings.damping = 20.0;
     settings.body_force = Vector3::new(0.0, 0.0, -10.0);
@@ -107,6 +108,7 @@ pub fn inclined_plate(
     let s = edge / per_edge as f64;
     let mut settings = Settings::<3>::new(Kinematics::Solid, 0.2);
     settings.scheme = scheme;
+    settings.bulk_viscosity = None;
     settings.dt = Some(1e-3);
     settings.damping = 20.0;
     settings.body_force = Vector3::new(0.0, 0.0, -10.0);

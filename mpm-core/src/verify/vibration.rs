@@ -49,6 +49,7 @@ pub struct SingleParticle {
 pub fn single_particle(centered: bool, dt: f64) -> SingleParticle {
     let e = 4.0 * PI * PI;
     let mut settings = Settings::<3>::new(Kinematics::Solid, 1.0);
+    settings.thesis_scheme();
     settings.dt = Some(dt);
     let mut s = Solver::new(settings);
     let x = if centered {
@@ -104,6 +105,7 @@ pub fn bar(scheme: Scheme, cells: usize) -> BarResult {
     let h = length / cells as f64;
     let mut settings = Settings::<2>::new(Kinematics::PlaneStrain, h);
     settings.scheme = scheme;
+    settings.bulk_viscosity = None;
     settings.safety = 0.1;
     let mut s = Solver::new(settings);
     let shape = Shape::Box {
