@@ -857,6 +857,29 @@ mod tests {
     }
 
     #[test]
+    fn walls_need_a_side_and_do_not_move_with_the_grid_shift() {
+        let dir = std::env::temp_dir().join("mpw_scene_wall_test");
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("bad.toml");
+        let text = std::fs::read_to_string(scenes().join("taylor_bar_axisymmetric.toml"))
+            .unwrap()
+            .replace(
+                "../materials/",
+                &format!("{}/", scenes().join("../materials").display()),
+            );
+        std::fs::write(&path, text.replace("below = \"y\"", "plane = \"y\"")).unwrap();
+        let e = load(&path).err().unwrap().to_string();
+        assert!(e.contains("velocity_bcs[0].one_sided"), "{e}");
+        let shifted = text.replace("[time]", "shift = [0.0, 1e-5]\n\n[time]");
+        std::fs::write(&path, shifted).unwrap();
+        let e = load(&path).err().unwrap().to_string();
+        assert!(
+            e.contains("velocity_bcs[0]") && e.contains("springs"),
+            "{e}"
+        );
+    }
+
+    #[test]
     fn a_scene_runs_and_writes_history_and_snapshots() {
         let dir = std::env::temp_dir().join("mpw_run_test");
         let _ = std::fs::remove_dir_all(&dir);
