@@ -754,7 +754,7 @@ fn build<const D: usize>(
         }
         if shifted {
             return Err(check.err(
-                format!("{field}"),
+                field.to_string(),
                 "velocity conditions act on grid nodes, and the grid shift (grid.shift) moves \
                  the nodes off the plane, so the wall would move with the grid; use [[springs]] \
                  (eq. 12.1) or a rigid half-space in [[rigid_bodies]] instead",
