@@ -3,8 +3,7 @@
 //! - Grid velocity conditions on node sets (eq. 7.28): the chosen components of
 //!   v_{n+1/2}^I are set to v̄ and those of a_n^I to zero (constant prescribed velocity);
 //!   fixed supports set every component, rolling supports and symmetry planes only the
-//!   normal one; the constrained acceleration is zero (eq. 7.28), so the points keep the
-//!   velocity the condition took from the node.
+//!   normal one. The points keep the velocity the condition took from the node.
 //! - One-sided conditions (a frictionless rigid wall that the body may leave): on the
 //!   nodes below (above) a plane, a component is set to v̄ only when the free velocity
 //!   would move into the wall, v_i < v̄ (v_i > v̄); otherwise the node moves freely. The
@@ -101,6 +100,7 @@ impl<const D: usize> VelocityBc<D> {
             (false, _) => true,
             (true, NodeSet::Below { .. }) => v_free < target,
             (true, NodeSet::Above { .. }) => v_free > target,
+            // a plane or box has no side: it acts both ways (scenes reject this)
             (true, _) => true,
         }
     }

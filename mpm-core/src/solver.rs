@@ -795,22 +795,28 @@ impl<const D: usize> Solver<D> {
         Ok(())
     }
 
-    /// x ← x + ṽ Δt, external work, domain check.
+    /// x ← x + ṽ Δt, external work, domain and watchdog checks.
     fn advect(&mut self) -> Result<(), SimulationError> {
         let dt = self.dt;
         let b = self.settings.body_force;
         let domain = self.settings.domain;
+        let watchdog = self.watchdog.as_ref();
+        let reach = watchdog.map_or(f64::INFINITY, |w| w.reach_at(self.time));
         let p = &mut self.particles;
         let s = &self.scratch;
         let failure = p
             .position
             .par_iter_mut()
             .zip(s.grid_velocity.par_iter())
+            .zip(p.velocity.par_iter())
             .enumerate()
-            .filter_map(|(i, (x, vg))| {
+            .filter_map(|(i, ((x, vg), v))| {
                 *x += vg * dt;
                 if !x.iter().all(|c| c.is_finite()) {
                     return Some((i, Cause::NonFinite { what: "position" }));
+                }
+                if let Some(cause) = watchdog.and_then(|w| w.check_point(x, v, reach)) {
+                    return Some((i, cause));
                 }
                 if let Some((lo, hi)) = domain {
                     if (0..D).any(|k| x[k] < lo[k] || x[k] > hi[k]) {
@@ -857,10 +863,6 @@ impl<const D: usize> Solver<D> {
         if let Some(w) = &self.watchdog {
             if let Some(cause) = w.check_energy(e.error(), e.supplied) {
                 return Err(self.failure(None, cause));
-            }
-            let p = &self.particles;
-            if let Some((i, cause)) = w.check_points(&p.position, &p.velocity, self.time) {
-                return Err(self.failure(Some(i), cause));
             }
         }
         Ok(())

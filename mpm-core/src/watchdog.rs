@@ -61,37 +61,33 @@ impl<const D: usize> Watchdog<D> {
         }
     }
 
-    /// The first point (lowest index) that moves too fast or has escaped by the time `t`.
-    pub fn check_points(
+    /// Distance from the initial box a point may have reached by the time `t` [m].
+    pub fn reach_at(&self, t: f64) -> f64 {
+        self.reach + 2.0 * self.v_ref * t + 0.5 * self.body_force * t * t
+    }
+
+    /// Whether a point at `x` moving at `v` is too fast or farther than `reach` (from
+    /// `reach_at`) from the initial box. Called from the solver's per-point position
+    /// update, which already visits every point in parallel.
+    #[inline]
+    pub fn check_point(
         &self,
-        positions: &[SVector<f64, D>],
-        velocities: &[SVector<f64, D>],
-        t: f64,
-    ) -> Option<(usize, Cause)> {
-        let reach = self.reach + 2.0 * self.v_ref * t + 0.5 * self.body_force * t * t;
-        for (i, (x, v)) in positions.iter().zip(velocities).enumerate() {
-            let speed = v.norm();
-            if speed > self.speed_limit {
-                return Some((
-                    i,
-                    Cause::SpeedLimit {
-                        speed,
-                        limit: self.speed_limit,
-                    },
-                ));
-            }
-            let outside = (x - x.sup(&self.lo).inf(&self.hi)).norm();
-            if outside > reach {
-                return Some((
-                    i,
-                    Cause::Escaped {
-                        distance: outside,
-                        limit: reach,
-                    },
-                ));
-            }
+        x: &SVector<f64, D>,
+        v: &SVector<f64, D>,
+        reach: f64,
+    ) -> Option<Cause> {
+        let speed = v.norm();
+        if speed > self.speed_limit {
+            return Some(Cause::SpeedLimit {
+                speed,
+                limit: self.speed_limit,
+            });
         }
-        None
+        let distance = (x - x.sup(&self.lo).inf(&self.hi)).norm();
+        (distance > reach).then_some(Cause::Escaped {
+            distance,
+            limit: reach,
+        })
     }
 
     /// Energy error [J] against the energy supplied [J].
@@ -119,33 +115,24 @@ mod tests {
     }
 
     #[test]
-    fn a_fast_or_escaped_point_is_named_and_the_first_one_wins() {
+    fn a_fast_or_escaped_point_is_caught() {
         let w = dog();
-        let x = [
-            Vector2::new(1.0, 1.0),
-            Vector2::new(1.0, 1.0),
-            Vector2::new(9.0, 4.0),
-        ];
-        let v = [Vector2::zeros(), Vector2::new(0.0, 121.0), Vector2::zeros()];
+        let (x, still) = (Vector2::new(1.0, 1.0), Vector2::zeros());
+        assert!(w.check_point(&x, &still, w.reach_at(0.0)).is_none());
+        let fast = Vector2::new(0.0, 121.0);
         assert!(matches!(
-            w.check_points(&x, &v, 0.0),
-            Some((1, Cause::SpeedLimit { .. }))
+            w.check_point(&x, &fast, w.reach_at(0.0)),
+            Some(Cause::SpeedLimit { .. })
         ));
-        let v = [Vector2::zeros(); 3];
         // (10, 4) is 7 m beyond the box edge x = 3: farther than 6 m at t = 0
-        let x = [
-            Vector2::new(1.0, 1.0),
-            Vector2::new(1.0, 1.0),
-            Vector2::new(10.0, 4.0),
-        ];
-        match w.check_points(&x, &v, 0.0) {
-            Some((2, Cause::Escaped { distance, .. })) => assert!((distance - 7.0).abs() < 1e-12),
+        let far = Vector2::new(10.0, 4.0);
+        match w.check_point(&far, &still, w.reach_at(0.0)) {
+            Some(Cause::Escaped { distance, .. }) => assert!((distance - 7.0).abs() < 1e-12),
             other => panic!("{other:?}"),
         }
         // by t = 0.05 s the prescribed 10 m/s allows 1 m more travel
-        assert!(w.check_points(&x, &v, 0.05).is_none());
-        let x = [Vector2::new(8.9, 4.0); 3]; // 5.9 m beyond: allowed
-        assert!(w.check_points(&x, &v, 0.0).is_none());
+        assert_eq!(w.reach_at(0.05), 7.0);
+        assert!(w.check_point(&far, &still, w.reach_at(0.05)).is_none());
     }
 
     #[test]
