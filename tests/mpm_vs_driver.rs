@@ -154,7 +154,6 @@ fn compress(material: Arc<dyn Material>, scheme: Scheme) -> Vec<Sample> {
             max: extent,
         },
         Vector3::repeat(CELL),
-        Vector3::zeros(),
         Kinematics::Solid,
     );
     assert_eq!(points.len(), NX * NX * NZ);

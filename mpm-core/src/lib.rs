@@ -36,6 +36,7 @@ pub use solver::{Energies, RunError, Scheme, Settings, Solver};
 pub use timestep::TimeStep;
 pub use viscosity::BulkViscosity;
 pub mod output;
+pub mod results;
 pub mod run;
 pub mod scene;
 pub mod verify;

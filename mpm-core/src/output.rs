@@ -60,7 +60,7 @@ impl HistoryWriter {
         ];
         row.extend(s.momentum().iter());
         if s.blocks.len() > 1 {
-            row.extend(s.blocks.iter().map(|b| body_kinetic(s, b.range.clone())));
+            row.extend((0..s.blocks.len()).map(|b| s.body_kinetic_energy(b)));
         }
         for r in &s.rigid {
             row.extend(r.contact.force.iter());
@@ -73,15 +73,6 @@ impl HistoryWriter {
         writeln!(self.out, "{}", text.join(","))?;
         self.out.flush()
     }
-}
-
-/// Kinetic energy ½ Σ m v² of the particles in `range` [J].
-fn body_kinetic<const D: usize>(s: &Solver<D>, range: std::ops::Range<usize>) -> f64 {
-    let p = &s.particles;
-    crate::sum::fixed_sum(range.len(), 0.0, |k| {
-        let i = range.start + k;
-        0.5 * p.mass[i] * p.velocity[i].norm_squared()
-    })
 }
 
 /// The first three components of `x`, padded with zeros.

@@ -1,10 +1,12 @@
 //! Run a loaded scene to its end time, writing `history.csv` every `history_every` steps
 //! and `snapshots` evenly spaced VTK snapshots (plus the first and the last state). A
 //! failure stops the run; what was written stays on disk and the failure is returned in
-//! the summary as a result.
+//! the summary as a result. The named results of the last state (module `results`) are
+//! written to `results.csv`, also after a failure.
 
 use crate::failure::SimulationError;
 use crate::output::{write_snapshot, HistoryWriter};
+use crate::results::{self, NamedResult, RestTracker};
 use crate::scene::{Scene, Simulation};
 use crate::solver::{RunError, Solver};
 use crate::timestep::TimeStep;
@@ -16,6 +18,7 @@ pub struct RunSummary {
     pub steps: usize,
     pub particles: usize,
     pub failure: Option<SimulationError>,
+    pub results: Vec<NamedResult>,
 }
 
 /// Run `scene` writing into `dir`; `progress(t, t_end)` is called after every step.
@@ -56,12 +59,15 @@ fn run<const D: usize>(
     let time_step = solver.initialize();
     let mut history = HistoryWriter::create(&dir.join("history.csv"), &solver)?;
     history.write(&solver)?;
+    let mut rest = RestTracker::default();
+    rest.observe(&solver);
     write_snapshot(dir, 0, &solver)?;
     let snapshot_dt = end / snapshots.max(1) as f64;
     let mut next_snapshot = 1;
     let result = solver.run_until(end, |s| {
         if s.step % history_every == 0 {
             history.write(s)?;
+            rest.observe(s);
         }
         if s.time >= next_snapshot as f64 * snapshot_dt - 0.5 * s.dt {
             write_snapshot(dir, next_snapshot, s)?;
@@ -79,10 +85,14 @@ fn run<const D: usize>(
             Some(e)
         }
     };
+    rest.observe(&solver);
+    let results = results::collect(&solver, &rest);
+    results::write_csv(&dir.join("results.csv"), &results)?;
     Ok(RunSummary {
         time_step,
         steps: solver.step,
         particles: solver.particles.len(),
         failure,
+        results,
     })
 }

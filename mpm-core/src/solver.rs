@@ -379,6 +379,15 @@ impl<const D: usize> Solver<D> {
         })
     }
 
+    /// Kinetic energy ½ Σ m v² of one body [J].
+    pub fn body_kinetic_energy(&self, block: usize) -> f64 {
+        let p = &self.particles;
+        let r = self.blocks[block].range.clone();
+        fixed_sum(r.len(), 0.0, |i| {
+            0.5 * p.mass[r.start + i] * p.velocity[r.start + i].norm_squared()
+        })
+    }
+
     /// Advance one time step.
     pub fn step(&mut self) -> Result<(), SimulationError> {
         self.refit_grid();
@@ -911,7 +920,6 @@ mod tests {
                 max: Vector3::repeat(1.0),
             },
             Vector3::repeat(0.05),
-            Vector3::zeros(),
             Kinematics::Solid,
         );
         s.add_body(
@@ -954,7 +962,6 @@ mod tests {
                 max: nalgebra::Vector2::new(0.1, 0.1),
             },
             nalgebra::Vector2::repeat(h / 2.0),
-            nalgebra::Vector2::zeros(),
             Kinematics::PlaneStrain,
         );
         s.add_body(

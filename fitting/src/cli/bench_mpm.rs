@@ -54,7 +54,6 @@ fn block() -> Solver<3> {
             max: Vector3::repeat(0.2),
         },
         Vector3::repeat(0.005),
-        Vector3::zeros(),
         Kinematics::Solid,
     );
     s.add_body(
@@ -84,12 +83,7 @@ fn compression(material: Arc<dyn Material>) -> Solver<3> {
         end: Vector3::new(0.0, 0.0, h),
         radius: r,
     };
-    let points = fill(
-        &shape,
-        Vector3::repeat(0.000_230_5),
-        Vector3::zeros(),
-        Kinematics::Solid,
-    );
+    let points = fill(&shape, Vector3::repeat(0.000_230_5), Kinematics::Solid);
     s.add_body("cylinder", material, &points, SVector::zeros());
     for i in 0..s.particles.len() {
         let x = s.particles.position[i];

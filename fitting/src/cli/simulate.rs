@@ -1,5 +1,6 @@
 //! `mpw simulate SCENE.toml`: run an MPM scene with a progress bar; write the time history
-//! (CSV), particle snapshots (VTK) and an energy chart (PNG) into the output directory.
+//! (CSV), particle snapshots (VTK), the named results (`results.csv`, also printed) and an
+//! energy chart (PNG) into the output directory.
 //! A failed run is reported with its step, time, particle and cause; its output stays.
 
 use crate::chart::{LineChart, Series};
@@ -36,10 +37,13 @@ pub fn run(args: Args) -> Result<()> {
     bar.finish();
     println!("{} particles, {}", summary.particles, summary.time_step);
     println!(
-        "{} steps; history, snapshots and chart in {}",
+        "{} steps; history, snapshots, results.csv and chart in {}",
         summary.steps,
         out.display()
     );
+    for r in &summary.results {
+        println!("  {:<28} {:>14.6e} {}", r.name, r.value, r.unit);
+    }
     energy_chart(&out.join("history.csv"), &out.join("energy.png"), &name)?;
     if let Some(e) = summary.failure {
         anyhow::bail!("{e}");

@@ -105,12 +105,7 @@ pub fn membrane(n: usize) -> Solver<2> {
         ],
     };
     let h = SPACING / n as f64;
-    let points = fill(
-        &shape,
-        Vector2::repeat(h),
-        Vector2::zeros(),
-        Kinematics::PlaneStrain,
-    );
+    let points = fill(&shape, Vector2::repeat(h), Kinematics::PlaneStrain);
     s.add_body(
         "membrane",
         Arc::new(NeoHooke::new(500e6, 0.35, 100.0)),

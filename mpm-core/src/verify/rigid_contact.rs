@@ -48,7 +48,6 @@ pub fn libra(penalty: f64, per_edge: usize) -> Result<LibraResult, crate::Simula
             max: Vector3::repeat(1.0),
         },
         Vector3::repeat(s),
-        Vector3::zeros(),
         Kinematics::Solid,
     );
     solver.add_body(
@@ -119,7 +118,6 @@ pub fn inclined_plate(
             max: Vector3::new(0.3, 0.3, edge),
         },
         Vector3::repeat(s),
-        Vector3::zeros(),
         Kinematics::Solid,
     );
     solver.add_body(

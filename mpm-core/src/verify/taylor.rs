@@ -31,7 +31,7 @@ use crate::solver::{Scheme, Settings, Solver};
 use crate::NodeSet;
 use crate::VelocityBc;
 use materials::verify::CaseResult;
-use materials::{load_material, Material};
+use materials::{load_material, Material, State};
 use nalgebra::SVector;
 use std::path::Path;
 use std::sync::Arc;
@@ -82,14 +82,40 @@ pub struct TaylorResult {
     pub footprint_area: f64,
     /// |L(end) − L(end − 10 µs)| / L(end): how much the length still changes [-].
     pub length_change: f64,
+    /// Largest α [-] and θ [K] over the bar at the end.
+    pub max_alpha: f64,
+    pub max_theta: f64,
     /// (t [s], L, D_f, D_A [m]) every microsecond.
     pub history: Vec<(f64, f64, f64, f64)>,
     /// Wall-clock time of the run [s].
     pub wall_time: f64,
 }
 
-fn copper() -> Arc<dyn Material> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/materials/ofhc_copper.toml");
+/// What hits the wall: a material file of `data/materials/` and the impact speed [m/s].
+#[derive(Debug, Clone, Copy)]
+pub struct Impact {
+    pub material: &'static str,
+    pub velocity: f64,
+}
+
+/// The Taylor test of the module docs.
+pub const COPPER: Impact = Impact {
+    material: "ofhc_copper.toml",
+    velocity: VELOCITY,
+};
+
+/// AISI 4340 at 12 m/s: the impact stress ρ c v ≈ 480 MPa is below the yield stress A =
+/// 792 MPa, so the bar must stay elastic everywhere (issue 8: the column next to the axis
+/// yielded without bulk viscosity, more so on finer grids).
+pub const ELASTIC_4340: Impact = Impact {
+    material: "aisi_4340.toml",
+    velocity: 12.0,
+};
+
+fn material(file: &str) -> Arc<dyn Material> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../data/materials")
+        .join(file);
     Arc::new(
         load_material(&path)
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
@@ -101,6 +127,7 @@ fn copper() -> Arc<dyn Material> {
 /// and direction.
 pub fn taylor_bar(
     model: Model,
+    impact: Impact,
     spacing: f64,
     per_cell: usize,
     end: f64,
@@ -118,14 +145,13 @@ pub fn taylor_bar(
                     max: SVector::<f64, 2>::new(RADIUS, LENGTH),
                 },
                 SVector::repeat(s),
-                SVector::zeros(),
                 Kinematics::Axisymmetric,
             );
             solver.add_body(
                 "bar",
-                copper(),
+                material(impact.material),
                 &points,
-                SVector::<f64, 2>::new(0.0, -VELOCITY),
+                SVector::<f64, 2>::new(0.0, -impact.velocity),
             );
             solver.velocity_bcs.push(VelocityBc::wall(1, 0.0, true));
             run(model, solver, s, end)
@@ -142,7 +168,6 @@ pub fn taylor_bar(
                     radius: RADIUS,
                 },
                 SVector::repeat(s),
-                SVector::zeros(),
                 Kinematics::Solid,
             )
             .into_iter()
@@ -150,9 +175,9 @@ pub fn taylor_bar(
             .collect();
             solver.add_body(
                 "bar",
-                copper(),
+                material(impact.material),
                 &points,
-                SVector::<f64, 3>::new(0.0, 0.0, -VELOCITY),
+                SVector::<f64, 3>::new(0.0, 0.0, -impact.velocity),
             );
             solver.velocity_bcs.push(VelocityBc::wall(2, 0.0, true));
             for axis in [0, 1] {
@@ -256,9 +281,19 @@ fn run<const D: usize>(
         footprint,
         footprint_area,
         length_change: (length - earlier).abs() / length,
+        max_alpha: largest(&solver, |st| st.alpha),
+        max_theta: largest(&solver, |st| st.theta),
         history,
         wall_time: started.elapsed().as_secs_f64(),
     })
+}
+
+fn largest<const D: usize>(solver: &Solver<D>, f: impl Fn(&State<f64>) -> f64) -> f64 {
+    solver.blocks[0]
+        .state
+        .iter()
+        .map(f)
+        .fold(f64::NEG_INFINITY, f64::max)
 }
 
 /// `mpw verify` rows: both models at dx = 0.635 mm (reduced) or 0.423 mm (full), to 80 µs.
@@ -272,8 +307,8 @@ pub fn cases(full: bool, out: &mut Vec<CaseResult>) {
     };
     let name = format!("mpm/taylor/dx{:.3}mm", dx * 1e3);
     let (axi, solid) = match (
-        taylor_bar(Model::Axisymmetric, dx, 2, 80e-6),
-        taylor_bar(Model::QuarterSolid, dx, 2, 80e-6),
+        taylor_bar(Model::Axisymmetric, COPPER, dx, 2, 80e-6),
+        taylor_bar(Model::QuarterSolid, COPPER, dx, 2, 80e-6),
     ) {
         (Ok(a), Ok(s)) => (a, s),
         (a, s) => {
@@ -310,13 +345,53 @@ pub fn cases(full: bool, out: &mut Vec<CaseResult>) {
         axi.length,
         0.01,
     ));
-    // 0.35 % apart with the fixed wall of eq. 7.28; 1.05 % since the wall is one-sided and
-    // stops the layer that hits it (axi D_A +1.4 %, 3D +0.7 %): a gap, reported
-    out.push(CaseResult::info(
-        format!("{name}/footprint-D_A 3d vs axi (gap: was within 1 %)"),
+    // 0.35 % apart with the fixed wall of eq. 7.28, 1.05 % with the one-sided wall and the
+    // sub-cell-centre fill (3D cylinder +3.45 % mass), 0.57 % with the exact fill
+    out.push(CaseResult::relative(
+        format!("{name}/footprint-D_A 3d vs axi"),
         solid.footprint_area,
         axi.footprint_area,
+        0.01,
     ));
+    refinement_rows(out);
+}
+
+/// Reported, not asserted (issue 8 is open on both): the copper bar's final length at 3, 6
+/// and 12 cells across the radius with its successive differences, and the largest α of
+/// the elastic 4340 bar (must be 0) at 6 and 12 cells.
+fn refinement_rows(out: &mut Vec<CaseResult>) {
+    let name = "mpm/taylor/refinement-axi";
+    let lengths: Result<Vec<f64>, _> = [3, 6, 12]
+        .iter()
+        .map(|&n| {
+            taylor_bar(Model::Axisymmetric, COPPER, RADIUS / n as f64, 2, 80e-6).map(|r| r.length)
+        })
+        .collect();
+    match lengths {
+        Ok(l) => out.push(CaseResult::info(
+            format!(
+                "{name}/L_f at 3, 6, 12 cells across R: {:.3}, {:.3}, {:.3} mm, differences {:+.3}, {:+.3} mm (gap: the differences grow again at 18 and 24 cells, README)",
+                l[0] * 1e3,
+                l[1] * 1e3,
+                l[2] * 1e3,
+                (l[1] - l[0]) * 1e3,
+                (l[2] - l[1]) * 1e3,
+            ),
+            l[2],
+            l[1],
+        )),
+        Err(e) => out.push(CaseResult::holds(format!("{name}: {e}"), false)),
+    }
+    for n in [6, 12] {
+        match taylor_bar(Model::Axisymmetric, ELASTIC_4340, RADIUS / n as f64, 2, 40e-6) {
+            Ok(r) => out.push(CaseResult::info(
+                format!("{name}/elastic-4340-12m_s/max-alpha at {n} cells across R (must be 0: gap, on the axis column)"),
+                r.max_alpha,
+                0.0,
+            )),
+            Err(e) => out.push(CaseResult::holds(format!("{name}/elastic n={n}: {e}"), false)),
+        }
+    }
 }
 
 #[cfg(test)]
@@ -327,8 +402,8 @@ mod tests {
     /// come to rest and agree with each other; the measurement at t = 0 is the bar.
     #[test]
     fn coarse_axisymmetric_and_quarter_bars_agree() {
-        let axi = taylor_bar(Model::Axisymmetric, COARSE, 2, 80e-6).unwrap();
-        let solid = taylor_bar(Model::QuarterSolid, COARSE, 2, 80e-6).unwrap();
+        let axi = taylor_bar(Model::Axisymmetric, COPPER, COARSE, 2, 80e-6).unwrap();
+        let solid = taylor_bar(Model::QuarterSolid, COPPER, COARSE, 2, 80e-6).unwrap();
         for r in [&axi, &solid] {
             eprintln!(
                 "{:?}: {} particles, L_f = {:.3} mm, D_f = {:.3} mm, D_A = {:.3} mm, change {:.2e}, {:.1} s",
@@ -372,7 +447,7 @@ mod refinement {
         println!("model | dx mm | particles | L_f mm | D_f mm | D_A mm | change | wall s");
         for (model, ks) in ks {
             for &k in *ks {
-                let r = taylor_bar(*model, commensurate_spacing(k), 2, 80e-6).unwrap();
+                let r = taylor_bar(*model, COPPER, commensurate_spacing(k), 2, 80e-6).unwrap();
                 println!(
                     "{:?} | {:.4} | {} | {:.3} | {:.3} | {:.3} | {:.1e} | {:.1}",
                     r.model,

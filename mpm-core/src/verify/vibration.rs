@@ -112,12 +112,7 @@ pub fn bar(scheme: Scheme, cells: usize) -> BarResult {
         min: Vector2::new(0.0, 0.0),
         max: Vector2::new(length, h),
     };
-    let points = fill(
-        &shape,
-        Vector2::new(h / 2.0, h),
-        Vector2::zeros(),
-        Kinematics::PlaneStrain,
-    );
+    let points = fill(&shape, Vector2::new(h / 2.0, h), Kinematics::PlaneStrain);
     s.add_body(
         "bar",
         Arc::new(NeoHooke::new(e, 0.0, rho)),
