@@ -9,15 +9,14 @@
 //! - `Polygon`: the lattice of sub-cells of size s aligned with its bounding box; each
 //!   sub-cell is clipped by the polygon (Sutherland-Hodgman: the polygon against the
 //!   convex sub-cell), the point gets the clipped area and sits at its centroid.
-//! - `Ball` (2D disk), `Cylinder`: rings of width Δr = R / max(1, round(R / s)), each cut
-//!   into 4 k sectors (k = max(1, round(2π r̄ / 4Δr)), so every sector lies in one
-//!   quadrant and a quarter model keeps whole sectors), the point at the sector's
-//!   centroid r_c = ⅔ (r₂³ − r₁³)/(r₂² − r₁²) · sin(Δθ/2)/(Δθ/2); the cylinder stacks
-//!   round(H / s) layers of these along its axis.
-//! - `Ball` (3D sphere): shells of width Δr, each cut into an even number of polar bands
-//!   of equal angle and each band into 4 k azimuthal sectors; the volume of a piece is
-//!   Δφ/3 (r₂³ − r₁³)(cos θ₁ − cos θ₂), its point at the shell's mass radius
-//!   ¾ (r₂⁴ − r₁⁴)/(r₂³ − r₁³) and the mid angles.
+//! - `Ball` (2D disk): the sub-cell lattice of its bounding square, each sub-cell clipped
+//!   by the regular N-gon of the disk's exact area (N a multiple of 4, sides about s/16,
+//!   both axes mirror lines, so a quarter model keeps whole pieces).
+//! - `Cylinder`: that disk as its cross-section, in round(H / s) layers along its axis.
+//! - `Ball` (3D sphere): shells of width Δr = R / max(1, round(R / s)), each cut into an
+//!   even number of polar bands of equal angle and each band into 4 k azimuthal sectors;
+//!   the volume of a piece is Δφ/3 (r₂³ − r₁³)(cos θ₁ − cos θ₂), its point at the shell's
+//!   mass radius ¾ (r₂⁴ − r₁⁴)/(r₂³ − r₁³) and the mid angles.
 //!
 //! Plane strain volumes are per metre of thickness; axisymmetric ones are the ring
 //! 2π x̄ A of each piece (Pappus: exact for the piece's centroid radius x̄ and area A).
@@ -49,32 +48,6 @@ pub enum Shape<const D: usize> {
 }
 
 impl<const D: usize> Shape<D> {
-    pub fn contains(&self, x: &SVector<f64, D>) -> bool {
-        match self {
-            Shape::Box { min, max } => (0..D).all(|i| x[i] >= min[i] && x[i] <= max[i]),
-            Shape::Ball { center, radius } => (x - center).norm() <= *radius,
-            Shape::Cylinder { start, end, radius } => {
-                let axis = end - start;
-                let s = (x - start).dot(&axis) / axis.norm_squared();
-                (0.0..=1.0).contains(&s) && (x - start - axis * s).norm() <= *radius
-            }
-            Shape::Polygon { vertices } => {
-                // even-odd ray casting in the first two coordinates
-                let mut inside = false;
-                let n = vertices.len();
-                for k in 0..n {
-                    let (a, b) = (vertices[k], vertices[(k + n - 1) % n]);
-                    if (a[1] > x[1]) != (b[1] > x[1])
-                        && x[0] < (b[0] - a[0]) * (x[1] - a[1]) / (b[1] - a[1]) + a[0]
-                    {
-                        inside = !inside;
-                    }
-                }
-                inside
-            }
-        }
-    }
-
     /// Axis-aligned bounding box.
     pub fn bounds(&self) -> (SVector<f64, D>, SVector<f64, D>) {
         match self {

@@ -13,7 +13,8 @@ use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-const AXES: [&str; 3] = ["x", "y", "z"];
+/// Axis names of columns and results.
+pub const AXES: [&str; 3] = ["x", "y", "z"];
 
 /// Streams one history row per call; flushed every row so a failed run keeps its history.
 pub struct HistoryWriter {

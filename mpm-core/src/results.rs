@@ -8,11 +8,12 @@
 //!   which its kinetic energy stayed below 1 % of its peak (NaN if it never did);
 //! - per control point: its final position [m].
 
+use crate::material_block::MaterialBlock;
+use crate::output::AXES;
 use crate::solver::Solver;
+use materials::State;
 use std::io::{self, Write};
 use std::path::Path;
-
-const AXES: [&str; 3] = ["x", "y", "z"];
 
 /// A body is at rest once its kinetic energy stays below this fraction of its peak.
 pub const REST_FRACTION: f64 = 0.01;
@@ -49,17 +50,27 @@ impl RestTracker {
     }
 }
 
+/// The largest value of `f` over the history of a block's points.
+pub fn largest(block: &MaterialBlock, f: impl Fn(&State<f64>) -> f64) -> f64 {
+    block.state.iter().map(f).fold(f64::NEG_INFINITY, f64::max)
+}
+
 /// The named results of the solver's current state.
 pub fn collect<const D: usize>(s: &Solver<D>, rest: &RestTracker) -> Vec<NamedResult> {
     let mut out = Vec::new();
     let mut push = |name: String, value: f64, unit| out.push(NamedResult { name, value, unit });
     for (b, block) in s.blocks.iter().enumerate() {
         let name = &block.name;
-        let max = |f: &dyn Fn(&materials::State<f64>) -> f64| {
-            block.state.iter().map(f).fold(f64::NEG_INFINITY, f64::max)
-        };
-        push(format!("{name}.max_alpha"), max(&|st| st.alpha), "-");
-        push(format!("{name}.max_theta"), max(&|st| st.theta), "K");
+        push(
+            format!("{name}.max_alpha"),
+            largest(block, |st| st.alpha),
+            "-",
+        );
+        push(
+            format!("{name}.max_theta"),
+            largest(block, |st| st.theta),
+            "K",
+        );
         let x = &s.particles.position[block.range.clone()];
         for (i, axis) in AXES.iter().enumerate().take(D) {
             let lo = x.iter().map(|p| p[i]).fold(f64::INFINITY, f64::min);

@@ -563,13 +563,11 @@ fn build<const D: usize>(
                 Shape::Polygon { vertices }
             }
         };
-        if kinematics == Kinematics::Axisymmetric && shape.bounds().0[0] < 0.0 {
+        let r_min = shape.bounds().0[0];
+        if kinematics == Kinematics::Axisymmetric && r_min < 0.0 {
             return Err(check.err(
                 sf,
-                format!(
-                    "reaches r = {} m < 0: an axisymmetric body lies in r ≥ 0 (the axis is r = 0)",
-                    shape.bounds().0[0]
-                ),
+                format!("reaches r = {r_min} m < 0: an axisymmetric body lies in r ≥ 0 (the axis is r = 0)"),
             ));
         }
         if b.particles_per_cell == 0 {
@@ -860,17 +858,23 @@ mod tests {
         assert!(e.contains("spaceing"), "{e}");
     }
 
+    /// The shipped axisymmetric Taylor scene with its material path made absolute, to be
+    /// written elsewhere with a change.
+    fn axisymmetric_taylor_text() -> String {
+        std::fs::read_to_string(scenes().join("taylor_bar_axisymmetric.toml"))
+            .unwrap()
+            .replace(
+                "../materials/",
+                &format!("{}/", scenes().join("../materials").display()),
+            )
+    }
+
     #[test]
     fn walls_need_a_side_and_do_not_move_with_the_grid_shift() {
         let dir = std::env::temp_dir().join("mpw_scene_wall_test");
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("bad.toml");
-        let text = std::fs::read_to_string(scenes().join("taylor_bar_axisymmetric.toml"))
-            .unwrap()
-            .replace(
-                "../materials/",
-                &format!("{}/", scenes().join("../materials").display()),
-            );
+        let text = axisymmetric_taylor_text();
         std::fs::write(&path, text.replace("below = \"y\"", "plane = \"y\"")).unwrap();
         let e = load(&path).err().unwrap().to_string();
         assert!(e.contains("velocity_bcs[0].one_sided"), "{e}");
@@ -901,12 +905,7 @@ mod tests {
         let dir = std::env::temp_dir().join("mpw_scene_axis_test");
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("bad.toml");
-        let text = std::fs::read_to_string(scenes().join("taylor_bar_axisymmetric.toml"))
-            .unwrap()
-            .replace(
-                "../materials/",
-                &format!("{}/", scenes().join("../materials").display()),
-            );
+        let text = axisymmetric_taylor_text();
         std::fs::write(
             &path,
             text.replace("min = [0.0, 0.0]", "min = [-0.001, 0.0]"),
