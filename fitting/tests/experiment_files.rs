@@ -305,3 +305,77 @@ fn shipped_experiment_files_load() {
     }
     assert_eq!(count, 10);
 }
+
+/// A value beyond the plausible range of its dimension names the row, the value as
+/// written and the likely mistake (issue 16): a stress of 2e9 "MPa" (Pa declared as MPa),
+/// a strain of 6 (600 %), and forces in kN declared as "MN" (10 MN over a 10 mm diameter
+/// is a stress of 127 GPa). Just inside the bounds the file reads.
+#[test]
+fn implausible_values_name_the_row_and_the_likely_mistake() {
+    let columns = TENSILE_COLUMNS.replace("unit = \"kN\"", "unit = \"MN\"");
+    let e = load_tensile("implausible-force", &tensile_toml(&columns, "")).unwrap_err();
+    assert!(
+        matches!(
+            &e,
+            ExperimentError::Implausible {
+                line: 4,
+                column: 3,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    let msg = e.to_string();
+    assert!(
+        msg.contains("10000000 N is implausible") && msg.contains("the force's unit"),
+        "{msg}"
+    );
+    let toml = "kind = \"tensile\"\ndata = \"t.csv\"\ntemperature = \"20 degC\"\nnominal_strain_rate = \"1 1/s\"\n\
+         [columns]\ntime = { name = \"time_s\", unit = \"s\" }\nstrain = { name = \"strain\", unit = \"1\" }\n\
+         stress = { name = \"stress_mpa\", unit = \"MPa\" }\n";
+    let load = |test: &str, csv: &str| {
+        let dir = folder(test, &[("t.csv", csv), ("t.toml", toml)]);
+        TensileExperiment::load(&dir.join("t.toml"))
+    };
+    let e = load(
+        "implausible-stress",
+        "time_s,strain,stress_mpa\n0,0,0\n1,0.01,2e9\n",
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            &e,
+            ExperimentError::Implausible {
+                line: 3,
+                column: 3,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert!(
+        e.to_string().contains("t.csv:3") && e.to_string().contains("declared as \"MPa\""),
+        "{e}"
+    );
+    let e = load(
+        "implausible-strain",
+        "time_s,strain,stress_mpa\n0,0,0\n1,6,200\n",
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            &e,
+            ExperimentError::Implausible {
+                line: 3,
+                column: 2,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    load(
+        "plausible",
+        "time_s,strain,stress_mpa\n0,0,0\n1,4.99,9999\n",
+    )
+    .unwrap();
+}

@@ -13,6 +13,7 @@ pub mod elastic;
 pub mod error;
 pub mod expm;
 pub mod flow_stress;
+pub mod limits;
 pub mod local_newton;
 pub mod material;
 pub mod neo_hooke;

@@ -2,6 +2,7 @@
 //! the cause. Users study where methods fail, so this is a result, not a crash: all output
 //! written before the failure stays on disk.
 
+use materials::limits::TooLarge;
 use materials::MaterialError;
 use thiserror::Error;
 
@@ -21,6 +22,10 @@ pub enum Cause {
     SpeedLimit { speed: f64, limit: f64 },
     #[error("{distance:.4e} m outside the initial extent of the bodies (limit {limit:.4e} m, its diagonal): the point has been thrown off, an instability")]
     Escaped { distance: f64, limit: f64 },
+    #[error("the run would be too long: {0}")]
+    TooManySteps(TooLarge),
+    #[error("the grid would be too large: {0}")]
+    GridTooLarge(TooLarge),
     #[error("energy error {error:.4e} J exceeds {limit:.4e} J (the energy-error fraction of the energy supplied): the integration is gaining energy, an instability (reduce time.safety)")]
     EnergyError { error: f64, limit: f64 },
 }

@@ -4,12 +4,13 @@
 //! the summary as a result. The named results of the last state (module `results`) are
 //! written to `results.csv`, also after a failure.
 
-use crate::failure::SimulationError;
+use crate::failure::{Cause, SimulationError};
 use crate::output::{write_snapshot, HistoryWriter};
 use crate::results::{self, NamedResult, RestTracker};
 use crate::scene::{Scene, Simulation};
 use crate::solver::{RunError, Solver};
 use crate::timestep::TimeStep;
+use materials::limits::TIME_STEPS;
 use std::path::Path;
 
 #[derive(Debug)]
@@ -57,6 +58,22 @@ fn run<const D: usize>(
     mut progress: impl FnMut(f64, f64),
 ) -> std::io::Result<RunSummary> {
     let time_step = solver.initialize();
+    if let Err(e) = TIME_STEPS.check(end / time_step.dt, || {
+        format!("time.end = {end:e} s at {time_step}")
+    }) {
+        return Ok(RunSummary {
+            time_step,
+            steps: 0,
+            particles: solver.particles.len(),
+            failure: Some(SimulationError {
+                step: 0,
+                time: 0.0,
+                particle: None,
+                cause: Cause::TooManySteps(e),
+            }),
+            results: Vec::new(),
+        });
+    }
     let mut history = HistoryWriter::create(&dir.join("history.csv"), &solver)?;
     history.write(&solver)?;
     let mut rest = RestTracker::default();

@@ -31,6 +31,7 @@ use crate::rigid::{
 };
 use crate::solver::{Scheme, Settings, Solver};
 use crate::viscosity::BulkViscosity;
+use materials::limits::PARTICLES;
 use materials::{load_material, Material, NeoHooke};
 use nalgebra::{SVector, Unit, Vector3};
 use serde::Deserialize;
@@ -501,6 +502,7 @@ fn build<const D: usize>(
     }
 
     let h = solver.settings.spacing;
+    let mut particles = 0.0;
     for (k, b) in spec.bodies.iter().enumerate() {
         let field = format!("bodies[{k}]");
         let material = materials
@@ -579,7 +581,18 @@ fn build<const D: usize>(
             .map(|v| check.vector::<D>(&format!("{field}.velocity"), v))
             .transpose()?
             .unwrap_or(SVector::zeros());
-        let points = fill(&shape, h / b.particles_per_cell as f64, kinematics);
+        let s = h / b.particles_per_cell as f64;
+        let (lo, hi) = shape.bounds();
+        let estimate: f64 = (0..D)
+            .map(|i| ((hi[i] - lo[i]) / s[i]).ceil() + 1.0)
+            .product();
+        particles += estimate;
+        PARTICLES
+            .check(particles, || {
+                format!("this body's bounding box {lo:?} .. {hi:?} m at a point spacing of {s:?} m (grid.spacing / particles_per_cell) holds about {estimate:.3e}")
+            })
+            .map_err(|e| check.err(sf.clone(), e.to_string()))?;
+        let points = fill(&shape, s, kinematics);
         if points.is_empty() {
             return Err(check.err(sf, "holds no material point (smaller than a sub-cell?)"));
         }
@@ -928,5 +941,39 @@ mod tests {
         assert_eq!(history.lines().count(), 1 + 1 + 63);
         let snapshot = std::fs::read(dir.join("snapshot_00010.vtk")).unwrap();
         assert!(snapshot.starts_with(b"# vtk DataFile"));
+    }
+    /// Sizes derived from a scene are bounded before anything of that size is allocated
+    /// (issue 16): a spacing of 1 nm on the colliding disks (4e17 points) is an error that
+    /// names the body; an end time of 1e30 s stops at step 0 naming `time.end`; a point
+    /// thrown 1e12 m away (2e13 cells) stops the run instead of allocating the grid.
+    #[test]
+    fn sizes_from_a_scene_are_bounded_before_allocation() {
+        let dir = std::env::temp_dir().join("mpw_scene_limits_test");
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("bad.toml");
+        let text = std::fs::read_to_string(scenes().join("colliding_disks.toml")).unwrap();
+        std::fs::write(&path, text.replace("spacing = 0.05", "spacing = 1e-9")).unwrap();
+        let e = load(&path).err().unwrap().to_string();
+        assert!(
+            e.contains("bodies[0].shape") && e.contains("material points"),
+            "{e}"
+        );
+        std::fs::write(&path, text.replace("end = 3.5", "end = 1e30")).unwrap();
+        let summary = crate::run::run_scene(load(&path).unwrap(), &dir, |_, _| {}).unwrap();
+        let failure = summary.failure.unwrap();
+        assert_eq!(summary.steps, 0);
+        assert!(
+            matches!(failure.cause, crate::Cause::TooManySteps(_)),
+            "{failure}"
+        );
+        assert!(failure.to_string().contains("time.end = 1e30"), "{failure}");
+        let mut scene = load(&scenes().join("colliding_disks.toml")).unwrap();
+        let Simulation::Planar(solver) = &mut scene.simulation else {
+            unreachable!()
+        };
+        solver.initialize();
+        solver.particles.position[0][1] = 1e12;
+        let e = solver.step().unwrap_err();
+        assert!(matches!(e.cause, crate::Cause::GridTooLarge(_)), "{e}");
     }
 }

@@ -32,6 +32,7 @@ use crate::sum::fixed_sum;
 use crate::timestep::{self, TimeStep};
 use crate::viscosity::BulkViscosity;
 use crate::watchdog::Watchdog;
+use materials::limits::GRID_NODES;
 use materials::Material;
 use nalgebra::{Matrix3, SMatrix, SVector};
 use rayon::prelude::*;
@@ -390,7 +391,7 @@ impl<const D: usize> Solver<D> {
 
     /// Advance one time step.
     pub fn step(&mut self) -> Result<(), SimulationError> {
-        self.refit_grid();
+        self.refit_grid()?;
         self.external_forces();
         match self.settings.scheme {
             Scheme::Usl => {
@@ -430,8 +431,9 @@ impl<const D: usize> Solver<D> {
         }
     }
 
-    /// Fit the grid to the particles' bounding box (shifted origin if grid shift is on).
-    fn refit_grid(&mut self) {
+    /// Fit the grid to the particles' bounding box (shifted origin if grid shift is on),
+    /// unless that box would need more than `limits::GRID_NODES` nodes.
+    fn refit_grid(&mut self) -> Result<(), SimulationError> {
         let shift = self.shift.as_mut().map_or(SVector::zeros(), |s| s.sample());
         self.grid.origin = self.settings.origin + shift;
         let x = &self.particles.position;
@@ -456,7 +458,19 @@ impl<const D: usize> Solver<D> {
                 |a, b| (a.0.inf(&b.0), a.1.sup(&b.1)),
             );
         let (cmin, cmax) = (self.grid.cell_of(&lo), self.grid.cell_of(&hi));
+        let nodes: f64 = (0..D)
+            .map(|i| cmax[i] as f64 - cmin[i] as f64 + 2.0)
+            .product();
+        if let Err(e) = GRID_NODES.check(nodes, || {
+            format!(
+                "the points span {lo:?} to {hi:?} m on cells of {:?} m",
+                self.grid.spacing
+            )
+        }) {
+            return Err(self.failure(None, Cause::GridTooLarge(e)));
+        }
         self.grid.fit(cmin, cmax);
+        Ok(())
     }
 
     /// Applied, spring (eq. 12.1) and penalty contact (eq. 9.2-9.7) forces on particles.

@@ -107,6 +107,20 @@ pub enum ExperimentError {
         previous: f64,
         value: f64,
     },
+    #[error("{}:{line}: column {column} \"{name}\": {problem}", file.display())]
+    Implausible {
+        file: PathBuf,
+        line: usize,
+        column: usize,
+        name: String,
+        /// The value as written with its unit, what it is in SI, and the likely mistake.
+        problem: String,
+    },
+    #[error("{}: {source}", file.display())]
+    TooLarge {
+        file: PathBuf,
+        source: Box<materials::limits::TooLarge>,
+    },
     #[error("{}: {found} data rows, at least {needed} needed", file.display())]
     TooFewRows {
         file: PathBuf,

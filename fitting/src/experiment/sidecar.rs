@@ -160,7 +160,43 @@ impl Sidecar {
             self.unknown_unit(&unit_key, spec.unit.span(), spec.unit.get_ref(), dimension)
         })?;
         let values = table.column(spec.name.get_ref(), &self.at(spec.name.span()))?;
-        Ok(values.into_iter().map(|v| conversion.apply(v)).collect())
+        let si: Vec<f64> = values.iter().map(|&v| conversion.apply(v)).collect();
+        let unit = spec.unit.get_ref();
+        let (limit, likely) = dimension.plausible_magnitude();
+        let how = format!("in SI units, {likely}");
+        self.check_plausible(table, spec, (&values, unit), &si, limit, &how)?;
+        Ok(si)
+    }
+
+    /// Check `derived` [SI], computed row by row from column `spec` (its values and their
+    /// unit in `source`), against the plausible magnitude `limit`
+    /// (`Dimension::plausible_magnitude`); `how` says how a value was derived and what the
+    /// likely mistake is.
+    pub fn check_plausible(
+        &self,
+        table: &CsvTable,
+        spec: &ColumnSpec,
+        (written, unit): (&[f64], &str),
+        derived: &[f64],
+        limit: f64,
+        how: &str,
+    ) -> Result<(), ExperimentError> {
+        match derived.iter().position(|v| v.abs() > limit) {
+            None => Ok(()),
+            Some(i) => {
+                let name = spec.name.get_ref().clone();
+                Err(ExperimentError::Implausible {
+                    file: table.file.clone(),
+                    line: table.line_of(i),
+                    column: table.position(&name).unwrap_or(0),
+                    name,
+                    problem: format!(
+                        "{} {unit} is implausible ({:e} {how})",
+                        written[i], derived[i]
+                    ),
+                })
+            }
+        }
     }
 
     /// Check that `time` (from column `spec` of `table`) increases strictly.

@@ -4,6 +4,7 @@
 //! `file:line: column k "name"`.
 
 use super::error::{ExperimentError, Location};
+use materials::limits::TEXT_FILE_BYTES;
 use std::path::{Path, PathBuf};
 
 pub(crate) struct CsvTable {
@@ -16,6 +17,16 @@ pub(crate) struct CsvTable {
 
 impl CsvTable {
     pub fn read(file: &Path) -> Result<CsvTable, ExperimentError> {
+        if let Ok(meta) = std::fs::metadata(file) {
+            TEXT_FILE_BYTES
+                .check(meta.len() as f64, || {
+                    "the file is read whole; split it or thin its samples".into()
+                })
+                .map_err(|source| ExperimentError::TooLarge {
+                    file: file.to_path_buf(),
+                    source: Box::new(source),
+                })?;
+        }
         let text = std::fs::read_to_string(file).map_err(|reason| ExperimentError::Io {
             file: file.to_path_buf(),
             reason,

@@ -164,7 +164,12 @@ impl TensileExperiment {
                 })?;
                 let extension =
                     sidecar.column(&table, "columns.extension", x, Dimension::Length)?;
-                extension.into_iter().map(|u| u / l0).collect()
+                let strain: Vec<f64> = extension.iter().map(|u| u / l0).collect();
+                let (limit, _) = Dimension::Strain.plausible_magnitude();
+                let how = format!("over the gauge length {l0:e} m as a strain, beyond {limit}: is the extension's unit or the gauge length wrong?");
+                let source = (&extension[..], "m");
+                sidecar.check_plausible(&table, x, source, &strain, limit, &how)?;
+                strain
             }
             _ => {
                 return Err(sidecar.invalid(
@@ -185,7 +190,12 @@ impl TensileExperiment {
                     )
                 })?;
                 let force = sidecar.column(&table, "columns.force", f, Dimension::Force)?;
-                force.into_iter().map(|f| f / a0).collect()
+                let stress: Vec<f64> = force.iter().map(|f| f / a0).collect();
+                let (limit, _) = Dimension::Stress.plausible_magnitude();
+                let how = format!("Pa over the area A0 = {a0:e} m² as a stress, beyond {limit:e} Pa: is the force's unit or the cross-section wrong?");
+                let source = (&force[..], "N");
+                sidecar.check_plausible(&table, f, source, &stress, limit, &how)?;
+                stress
             }
             _ => {
                 return Err(sidecar.invalid(

@@ -109,6 +109,25 @@ impl Dimension {
         names.join(", ")
     }
 
+    /// The largest magnitude [SI] that a measured column of this dimension can hold in a
+    /// test of metals, and the likely mistake behind a larger value (issue 16). Wide on
+    /// purpose: it catches a mistyped cell and a wrong unit, not an unusual test.
+    pub fn plausible_magnitude(self) -> (f64, &'static str) {
+        match self {
+            Dimension::Time => (1e8, "over three years: is a column in ms or µs declared as \"s\"?"),
+            Dimension::Strain => (5.0, "a strain beyond 500 %: a mistyped value, or a column in % or microstrain declared as \"1\"?"),
+            Dimension::Stress => (1e10, "beyond 10 GPa: a mistyped value, or a column in Pa declared as \"MPa\" or \"GPa\"?"),
+            Dimension::Force => (1e8, "beyond 100 MN: a mistyped value, or a column in N declared as \"kN\"?"),
+            Dimension::Length => (10.0, "beyond 10 m: a mistyped value, or a column in mm declared as \"m\"?"),
+            Dimension::Voltage => (1e3, "beyond 1000 V: a mistyped value, or a column in mV declared as \"V\"?"),
+            Dimension::Area => (1.0, "beyond 1 m²"),
+            Dimension::Density => (1e5, "beyond 100 000 kg/m³"),
+            Dimension::Velocity => (1e5, "beyond 100 km/s"),
+            Dimension::Temperature => (1e4, "beyond 10 000 K"),
+            Dimension::StrainRate => (1e9, "beyond 10⁹ 1/s"),
+        }
+    }
+
     /// `(scale, offset)` of `unit`, or `None` if this dimension has no such unit.
     pub fn to_si(self, unit: &str) -> Option<UnitConversion> {
         self.table()

@@ -198,7 +198,14 @@ fn tensile_block(
         &idx,
         thermal,
         e.temperature_k,
-    )?;
+    )
+    .with_context(|| {
+        format!(
+            "{}: the tensile model of `{}`",
+            e.data_file.display(),
+            e.name
+        )
+    })?;
     let mut block = Block::new(
         &e.name,
         Box::new(SinglePoint::new(model)),

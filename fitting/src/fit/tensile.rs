@@ -18,6 +18,7 @@ use super::preheated::thermal_stretch;
 use super::single_point::Observable;
 use anyhow::{bail, Result};
 use materials::driver::{LoadPath, Ramp, Record, Temperature};
+use materials::limits::LOAD_PATH_STEPS;
 use materials::scalar::{c, Scalar};
 
 /// Largest engineering-strain increment of one driver step.
@@ -68,18 +69,25 @@ impl Tensile {
             bail!("tensile model: sample index {last} beyond the history");
         }
         let lambda = thermal_stretch(material, theta);
+        let steps = substeps(&strain[..=last]);
+        LOAD_PATH_STEPS.check(steps.iter().map(|&n| n as f64).sum(), || {
+            let (k, n) = steps.iter().enumerate().max_by_key(|(_, n)| **n).unwrap();
+            format!(
+                "the strain history rises to {:e} at history point {k} ({n} steps of {MAX_STRAIN_STEP} there)",
+                strain[k]
+            )
+        })?;
         // Start at zero strain one sample interval before the first sample.
         let mut path_t = vec![times[0] - (times[1] - times[0])];
         let mut path_e = vec![0.0];
         let mut records = Vec::with_capacity(times.len());
         let mut e_max: f64 = 0.0;
-        for (&t, &e) in times[..=last].iter().zip(strain) {
+        for ((&t, &e), &n) in times[..=last].iter().zip(strain).zip(&steps) {
             let (t_prev, e_prev) = (*path_t.last().unwrap(), *path_e.last().unwrap());
             if !(t > t_prev) {
                 bail!("tensile model: time {t} s is not after {t_prev} s");
             }
             e_max = e_max.max(e);
-            let n = ((e_max - e_prev) / MAX_STRAIN_STEP).ceil().max(1.0) as usize;
             for k in 1..=n {
                 let w = k as f64 / n as f64;
                 path_t.push(t_prev + w * (t - t_prev));
@@ -100,6 +108,22 @@ impl Tensile {
             inv_stretch2: 1.0 / (lambda * lambda),
         })
     }
+}
+
+/// Driver steps from each history point to the next: the rise of the running maximum of
+/// `strain` in steps of at most `MAX_STRAIN_STEP`, at least one (saturating, so that a
+/// corrupt sample gives a count the size check refuses rather than an overflow).
+fn substeps(strain: &[f64]) -> Vec<usize> {
+    let (mut e_prev, mut e_max) = (0.0, 0.0f64);
+    strain
+        .iter()
+        .map(|&e| {
+            e_max = e_max.max(e);
+            let n = ((e_max - e_prev) / MAX_STRAIN_STEP).ceil().max(1.0);
+            e_prev = e_max;
+            n.min(usize::MAX as f64 / 2.0) as usize
+        })
+        .collect()
 }
 
 impl Observable for Tensile {
@@ -123,5 +147,51 @@ impl Observable for Tensile {
                 records[i].sigma[(0, 0)] * f[(1, 1)] * f[(2, 2)] * c::<D>(self.inv_stretch2)
             })
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn material() -> Material {
+        match materials::load_material(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../data/materials/42crmo4_qt660.toml"
+        ))
+        .unwrap()
+        .model
+        {
+            materials::AnyModel::ElastoPlastic(m) => m,
+            _ => unreachable!(),
+        }
+    }
+
+    /// A history of 4 points to 1.25 % strain takes 1 + 2 + 3 + 1 steps (at most 0.25 % per
+    /// step, one where the strain falls); one corrupt strain of 1e20 asks for 4e22 steps and is refused before any of
+    /// them is allocated, naming the point (issue 16).
+    #[test]
+    fn a_corrupt_strain_is_refused_before_the_path_is_built() {
+        let times = [1.0, 2.0, 3.0, 4.0];
+        assert_eq!(substeps(&[0.001, 0.0055, 0.0125, 0.0100]), vec![1, 2, 3, 1]);
+        let build = |strain: &[f64]| {
+            Tensile::new(
+                &material(),
+                &times,
+                strain,
+                &[0, 1, 2, 3],
+                Thermal::Isothermal,
+                293.15,
+            )
+        };
+        let ok = build(&[0.001, 0.0055, 0.0125, 0.0100]).unwrap();
+        assert_eq!(ok.path.times.len(), 1 + 7);
+        let e = build(&[0.001, 1e20, 0.0125, 0.0100])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("load-path steps") && e.contains("history point 1"),
+            "{e}"
+        );
     }
 }

@@ -18,6 +18,7 @@ use super::plateau::Plateau;
 use super::pulses::{detect_pulses, PulseWindows};
 use super::signal::{cumulative_integral, interpolate};
 use crate::experiment::ShpbExperiment;
+use materials::limits::SIGNAL_SAMPLES;
 use std::path::Path;
 
 /// Histories at the specimen faces, sampled at the record's mean sampling interval.
@@ -65,7 +66,14 @@ pub fn analyze(exp: &ShpbExperiment) -> Result<ShpbAnalysis, ShpbError> {
     let n = t.len();
     let dt = (t[n - 1] - t[0]) / (n - 1) as f64;
     let (start, end) = pulses.window_at_faces_s;
-    let samples = ((end - start) / dt).floor() as usize + 1;
+    let samples = SIGNAL_SAMPLES
+        .check(((end - start) / dt).floor() + 1.0, || {
+            format!("the window at the faces {start:e} .. {end:e} s at the record's mean sampling interval {dt:e} s")
+        })
+        .map_err(|source| ShpbError::TooLarge {
+            name: exp.name.clone(),
+            source,
+        })?;
     let face_times: Vec<f64> = (0..samples).map(|k| start + k as f64 * dt).collect();
     let (di, dtr) = (pulses.delay_incident_s, pulses.delay_transmitted_s);
     let read = |values: &[f64], baseline: f64, shift: f64| -> Vec<f64> {

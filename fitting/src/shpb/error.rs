@@ -31,4 +31,9 @@ pub enum ShpbError {
     },
     #[error("{name}: no strain-rate plateau: the strain rate never exceeds half its maximum for more than one sample")]
     NoPlateau { name: String },
+    #[error("{name}: {source}")]
+    TooLarge {
+        name: String,
+        source: materials::limits::TooLarge,
+    },
 }

@@ -2,6 +2,7 @@
 //! (uniaxial tension/compression at constant true or engineering rate with a hold,
 //! simple shear, the SHPB specimen under a prescribed length history).
 
+use crate::limits::{TooLarge, LOAD_PATH_STEPS};
 use thiserror::Error;
 
 /// A piecewise-linear function of time through the points (t_k, v_k), constant beyond
@@ -22,6 +23,8 @@ pub enum RampError {
     NotIncreasing(usize),
     #[error("ramp value {0} is not finite")]
     NonFinite(usize),
+    #[error(transparent)]
+    TooLarge(#[from] TooLarge),
 }
 
 impl Ramp {
@@ -141,8 +144,10 @@ impl LoadPath {
     ) -> Result<Self, RampError> {
         let t_ramp = strain_end.abs() / rate.abs();
         let dt = t_ramp / steps as f64;
-        let hold_steps = (hold / dt).round() as usize;
-        let times: Vec<f64> = (0..=steps + hold_steps).map(|k| k as f64 * dt).collect();
+        let total = LOAD_PATH_STEPS.check(steps as f64 + (hold / dt).round(), || {
+            format!("{steps} ramp steps of {dt:e} s and a hold of {hold:e} s at that step")
+        })?;
+        let times: Vec<f64> = (0..=total).map(|k| k as f64 * dt).collect();
         let stretch = times
             .iter()
             .map(|&t| {
@@ -165,6 +170,7 @@ impl LoadPath {
         temperature: Temperature,
     ) -> Result<Self, RampError> {
         let t_end = gamma_end.abs() / gamma_rate.abs();
+        LOAD_PATH_STEPS.check(steps as f64, || format!("{steps} shear steps"))?;
         let gamma = Ramp::new(vec![0.0, t_end], vec![0.0, gamma_end])?;
         Ok(LoadPath {
             controls: [
