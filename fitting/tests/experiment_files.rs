@@ -379,3 +379,39 @@ fn implausible_values_name_the_row_and_the_likely_mistake() {
     )
     .unwrap();
 }
+
+/// Metadata quantities are held to the same table: 20 000 °C and a rate of 1e12 1/s name
+/// their key and line; "200 GPa" as a bar modulus is fine (the other tests), "200000 GPa"
+/// is not.
+#[test]
+fn implausible_metadata_names_the_key() {
+    let toml = tensile_toml(TENSILE_COLUMNS, "").replace("\"20 degC\"", "\"20000 degC\"");
+    let e = load_tensile("implausible-temperature", &toml).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::InvalidValue { key, at, .. } if key == "temperature" && at.line == 3),
+        "{e}"
+    );
+    assert!(e.to_string().contains("beyond 10 000 K"), "{e}");
+    let toml = tensile_toml(TENSILE_COLUMNS, "").replace("\"1 1/s\"", "\"1e12 1/s\"");
+    let e = load_tensile("implausible-rate", &toml).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::InvalidValue { key, .. } if key == "nominal_strain_rate"),
+        "{e}"
+    );
+    let dir = folder(
+        "implausible-modulus",
+        &[
+            ("s.csv", "t_us,inc_v,tr_ue\n0,-100,-50\n1,200,25\n"),
+            (
+                "s.toml",
+                &SHPB_TOML.replace("\"200 GPa\"", "\"200000 GPa\""),
+            ),
+        ],
+    );
+    let e = ShpbExperiment::load(&dir.join("s.toml")).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::InvalidValue { key, at, .. } if key == "bar.elastic_modulus" && at.line == 9),
+        "{e}"
+    );
+    assert!(e.to_string().contains("beyond 1000 GPa"), "{e}");
+}

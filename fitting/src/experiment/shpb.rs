@@ -153,8 +153,11 @@ impl ShpbExperiment {
         let temperature_k =
             sidecar.positive("temperature", &spec.temperature, Dimension::Temperature)?;
         let b = &spec.bar;
-        let elastic_modulus_pa =
-            sidecar.positive("bar.elastic_modulus", &b.elastic_modulus, Dimension::Stress)?;
+        let elastic_modulus_pa = sidecar.positive(
+            "bar.elastic_modulus",
+            &b.elastic_modulus,
+            Dimension::Modulus,
+        )?;
         let density_kg_m3 = match (&b.density, &b.wave_speed) {
             (Some(rho), None) => sidecar.positive("bar.density", rho, Dimension::Density)?,
             (None, Some(c0)) => {

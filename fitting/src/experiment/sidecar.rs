@@ -90,8 +90,30 @@ impl Sidecar {
         }
     }
 
-    /// A quantity string `"<number> <unit>"` in SI.
+    /// A quantity string `"<number> <unit>"` in SI, within the dimension's plausible
+    /// magnitude.
     pub fn quantity(
+        &self,
+        key: &str,
+        value: &Spanned<String>,
+        dimension: Dimension,
+    ) -> Result<f64, ExperimentError> {
+        let x = self.parsed_quantity(key, value, dimension)?;
+        let (limit, likely) = dimension.plausible_magnitude();
+        if x.abs() > limit {
+            return Err(self.invalid(
+                key,
+                value.span(),
+                format!(
+                    "\"{}\" is implausible ({x:e} in SI units, {likely})",
+                    value.get_ref()
+                ),
+            ));
+        }
+        Ok(x)
+    }
+
+    fn parsed_quantity(
         &self,
         key: &str,
         value: &Spanned<String>,

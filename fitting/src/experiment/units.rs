@@ -10,6 +10,8 @@ pub enum Dimension {
     Time,
     Strain,
     Stress,
+    /// An elastic modulus: the units of stress, a larger plausible magnitude.
+    Modulus,
     Force,
     Length,
     Area,
@@ -87,7 +89,7 @@ impl Dimension {
         match self {
             Dimension::Time => TIME,
             Dimension::Strain => STRAIN,
-            Dimension::Stress => STRESS,
+            Dimension::Stress | Dimension::Modulus => STRESS,
             Dimension::Force => FORCE,
             Dimension::Length => LENGTH,
             Dimension::Area => AREA,
@@ -109,14 +111,16 @@ impl Dimension {
         names.join(", ")
     }
 
-    /// The largest magnitude [SI] that a measured column of this dimension can hold in a
-    /// test of metals, and the likely mistake behind a larger value (issue 16). Wide on
+    /// The largest magnitude [SI] that a measured column or a metadata quantity of this
+    /// dimension can hold in a test of metals, and the likely mistake behind a larger
+    /// value (issue 16). Wide on
     /// purpose: it catches a mistyped cell and a wrong unit, not an unusual test.
     pub fn plausible_magnitude(self) -> (f64, &'static str) {
         match self {
             Dimension::Time => (1e8, "over three years: is a column in ms or µs declared as \"s\"?"),
             Dimension::Strain => (5.0, "a strain beyond 500 %: a mistyped value, or a column in % or microstrain declared as \"1\"?"),
             Dimension::Stress => (1e10, "beyond 10 GPa: a mistyped value, or a column in Pa declared as \"MPa\" or \"GPa\"?"),
+            Dimension::Modulus => (1e12, "beyond 1000 GPa: a mistyped value, or a modulus in MPa declared as \"GPa\"?"),
             Dimension::Force => (1e8, "beyond 100 MN: a mistyped value, or a column in N declared as \"kN\"?"),
             Dimension::Length => (10.0, "beyond 10 m: a mistyped value, or a column in mm declared as \"m\"?"),
             Dimension::Voltage => (1e3, "beyond 1000 V: a mistyped value, or a column in mV declared as \"V\"?"),
