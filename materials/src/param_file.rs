@@ -52,6 +52,8 @@ struct Range {
     lo_open: bool,
     hi: f64,
     hi_open: bool,
+    /// The likely mistake behind a value outside, for the message ("" for none).
+    hint: &'static str,
 }
 
 impl Range {
@@ -61,6 +63,7 @@ impl Range {
             lo_open: true,
             hi: f64::INFINITY,
             hi_open: true,
+            hint: "",
         }
     }
     const fn non_negative() -> Self {
@@ -69,6 +72,7 @@ impl Range {
             lo_open: false,
             hi: f64::INFINITY,
             hi_open: true,
+            hint: "",
         }
     }
     const fn closed(lo: f64, hi: f64) -> Self {
@@ -77,6 +81,7 @@ impl Range {
             lo_open: false,
             hi,
             hi_open: false,
+            hint: "",
         }
     }
     const fn open(lo: f64, hi: f64) -> Self {
@@ -85,6 +90,15 @@ impl Range {
             lo_open: true,
             hi,
             hi_open: true,
+            hint: "",
+        }
+    }
+    /// A Johnson-Cook material is a metal: bounds that catch a value in the wrong unit
+    /// (issue 14: E = 224.2 "Pa" ran and gave σ = 0).
+    const fn plausible(lo: f64, hi: f64, hint: &'static str) -> Self {
+        Range {
+            hint,
+            ..Range::closed(lo, hi)
         }
     }
     fn contains(&self, v: f64) -> bool {
@@ -167,9 +181,17 @@ impl Reader<'_> {
                 }
             };
             if !range.contains(v) {
+                let hint = if range.hint.is_empty() {
+                    String::new()
+                } else {
+                    format!(": {}", range.hint)
+                };
                 return Err(self.err(
                     field,
-                    format!("value {v} outside the allowed range {}", range.describe()),
+                    format!(
+                        "value {v} outside the allowed range {}{hint}",
+                        range.describe()
+                    ),
                 ));
             }
             *slot = v;
@@ -233,13 +255,30 @@ pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFile
         }
     }
     let name = r.string(&root, "name")?.unwrap_or("unnamed").to_string();
+    let metal = model_kind == "johnson-cook";
+    let (e_range, rho_range) = if metal {
+        (
+            Range::plausible(
+                1e9,
+                1e12,
+                "a metal's E in Pa, e.g. 210e9 for steel (GPa or MPa given?)",
+            ),
+            Range::plausible(
+                500.0,
+                25e3,
+                "a metal's density in kg/m^3, e.g. 7850 for steel (g/cm^3 given?)",
+            ),
+        )
+    } else {
+        (Range::positive(), Range::positive())
+    };
     let [e, nu, rho] = r.numbers(
         r.section(&root, "elastic")?,
         "elastic",
         [
-            ("E", Range::positive()),
+            ("E", e_range),
             ("nu", Range::open(-1.0, 0.5)),
-            ("rho", Range::positive()),
+            ("rho", rho_range),
         ],
     )?;
     let elastic = Elastic { e, nu, rho };
@@ -301,8 +340,22 @@ pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFile
                 r.section(&root, "johnson_cook")?,
                 "johnson_cook",
                 [
-                    ("A", Range::positive()),
-                    ("B", Range::non_negative()),
+                    (
+                        "A",
+                        Range::plausible(
+                            1e6,
+                            1e10,
+                            "a yield stress in Pa, e.g. 8e8 for 800 MPa (MPa given?)",
+                        ),
+                    ),
+                    (
+                        "B",
+                        Range::plausible(
+                            0.0,
+                            1e10,
+                            "a hardening modulus in Pa, e.g. 5e8 for 500 MPa (MPa given?)",
+                        ),
+                    ),
                     ("N", Range::open(0.0, 5.0)),
                     ("C", Range::non_negative()),
                     ("M", Range::positive()),
@@ -314,6 +367,7 @@ pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFile
                             lo_open: true,
                             hi: f64::INFINITY,
                             hi_open: true,
+                            hint: "the melting temperature in K, above theta0",
                         },
                     ),
                 ],

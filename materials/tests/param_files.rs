@@ -60,7 +60,29 @@ fn bad_fields_are_named_with_the_allowed_range() {
         (
             GOOD.replace("E = 200e9", "E = -200e9"),
             "elastic.E",
-            "(0, inf)",
+            "[1000000000, 1000000000000]",
+        ),
+        // a Johnson-Cook material is a metal: values in the wrong unit are named with the
+        // likely mistake (issue 14: E = 224.2 ran and gave σ = 0)
+        (
+            GOOD.replace("E = 200e9", "E = 224.2"),
+            "elastic.E",
+            "GPa or MPa given?",
+        ),
+        (
+            GOOD.replace("rho = 7800.0", "rho = 7.8"),
+            "elastic.rho",
+            "g/cm^3 given?",
+        ),
+        (
+            GOOD.replace("A = 800e6", "A = 800"),
+            "johnson_cook.A",
+            "MPa given?",
+        ),
+        (
+            GOOD.replace("B = 500e6", "B = 5e12"),
+            "johnson_cook.B",
+            "[0, 10000000000]",
         ),
         (
             GOOD.replace("nu = 0.3", "nu = 0.5"),
