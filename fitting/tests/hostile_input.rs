@@ -9,8 +9,9 @@
 //!   `mpw fit`, and of two small scenes through `mpw simulate`. Damage: a flipped byte, the
 //!   file cut short, a line doubled or dropped, a number replaced by 0, −1, 1e30, 1e-30,
 //!   nan or a 20-digit integer, or `nan`, `inf`, NUL or `[[` inserted. Each run must fit,
-//!   or end with exit status 1 and an `error:` line; a panic, a signal (the memory limit
-//!   makes allocation fail), or a run past the time limit fails the test.
+//!   or end with exit status 1 and an `error:` line that names a file or the step of a
+//!   simulation failure; a panic, a signal (the memory limit makes allocation fail), or a
+//!   run past the time limit fails the test.
 //!
 //! Limits per run: 100 MiB of address space (`ulimit -v`; the undamaged default fit needs
 //! under 60 MiB) and `TIME_LIMIT`.
@@ -41,7 +42,7 @@ fn data() -> PathBuf {
 }
 
 /// How one run ended.
-#[derive(Debug, PartialEq)]
+#[derive(Debug)]
 enum Outcome {
     Success,
     /// Exit status 1 with this `error:` message.
@@ -91,7 +92,8 @@ fn run_limited(args: &[&str]) -> (Outcome, Duration) {
         Some(s) if s.success() => Outcome::Success,
         Some(s) if s.code() == Some(1) && !text.contains("panicked") => {
             match text.lines().find(|l| l.starts_with("error:")) {
-                Some(line) => Outcome::Error(line.to_string()),
+                Some(line) if names_its_place(line) => Outcome::Error(line.to_string()),
+                Some(line) => Outcome::Failure(format!("an error that names no file: {line}")),
                 None => Outcome::Failure(format!("status 1 without an error line: {text}")),
             }
         }
@@ -100,8 +102,16 @@ fn run_limited(args: &[&str]) -> (Outcome, Duration) {
     (outcome, elapsed)
 }
 
-/// A fresh copy of `data/experiments` and `data/materials` (the set's relative paths stay
-/// valid) under a per-test folder.
+/// An error names the file it is about, or it is a simulation failure with its step and
+/// cause (a bare "No such file or directory" is not an answer).
+fn names_its_place(line: &str) -> bool {
+    [".toml", ".csv", "simulation failed at step"]
+        .iter()
+        .any(|p| line.contains(p))
+}
+
+/// A fresh copy of the files of `data/experiments`, `data/materials` and `data/scenes`
+/// (their relative paths stay valid) under a per-test folder.
 fn copy_inputs(name: &str) -> PathBuf {
     let root = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
     let _ = std::fs::remove_dir_all(&root);

@@ -54,7 +54,7 @@ pub const SIGNAL_SAMPLES: SizeLimit = SizeLimit {
     bytes_each: 8,
 };
 
-/// Bytes of one text data file read into memory whole (CSV, TOML).
+/// Bytes of one experiment CSV, which is read into memory whole.
 pub const TEXT_FILE_BYTES: SizeLimit = SizeLimit {
     what: "bytes of a text data file",
     max: 512 << 20,

@@ -93,8 +93,8 @@ impl Range {
             hint: "",
         }
     }
-    /// A Johnson-Cook material is a metal: bounds that catch a value in the wrong unit
-    /// (issue 14: E = 224.2 "Pa" ran and gave σ = 0).
+    /// A closed range with the likely mistake behind a value outside it: the metal bounds
+    /// of a Johnson-Cook file (issue 14: E = 224.2 "Pa" ran and gave σ = 0).
     const fn plausible(lo: f64, hi: f64, hint: &'static str) -> Self {
         Range {
             hint,

@@ -2,7 +2,8 @@
 //! and `snapshots` evenly spaced VTK snapshots (plus the first and the last state). A
 //! failure stops the run; what was written stays on disk and the failure is returned in
 //! the summary as a result. The named results of the last state (module `results`) are
-//! written to `results.csv`, also after a failure.
+//! written to `results.csv`, also after a failure. A run that would take more than
+//! `limits::TIME_STEPS` steps fails at step 0 (after the first history row).
 
 use crate::failure::{Cause, SimulationError};
 use crate::output::{write_snapshot, HistoryWriter};
@@ -58,22 +59,6 @@ fn run<const D: usize>(
     mut progress: impl FnMut(f64, f64),
 ) -> std::io::Result<RunSummary> {
     let time_step = solver.initialize();
-    if let Err(e) = TIME_STEPS.check(end / time_step.dt, || {
-        format!("time.end = {end:e} s at {time_step}")
-    }) {
-        return Ok(RunSummary {
-            time_step,
-            steps: 0,
-            particles: solver.particles.len(),
-            failure: Some(SimulationError {
-                step: 0,
-                time: 0.0,
-                particle: None,
-                cause: Cause::TooManySteps(e),
-            }),
-            results: Vec::new(),
-        });
-    }
     let mut history = HistoryWriter::create(&dir.join("history.csv"), &solver)?;
     history.write(&solver)?;
     let mut rest = RestTracker::default();
@@ -81,18 +66,29 @@ fn run<const D: usize>(
     write_snapshot(dir, 0, &solver)?;
     let snapshot_dt = end / snapshots.max(1) as f64;
     let mut next_snapshot = 1;
-    let result = solver.run_until(end, |s| {
-        if s.step % history_every == 0 {
-            history.write(s)?;
-            rest.observe(s);
-        }
-        if s.time >= next_snapshot as f64 * snapshot_dt - 0.5 * s.dt {
-            write_snapshot(dir, next_snapshot, s)?;
-            next_snapshot += 1;
-        }
-        progress(s.time, end);
-        Ok(())
+    let too_long = TIME_STEPS.check(end / time_step.dt, || {
+        format!("time.end = {end:e} s at {time_step}")
     });
+    let result = match too_long {
+        Err(e) => Err(RunError::Simulation(SimulationError {
+            step: 0,
+            time: 0.0,
+            particle: None,
+            cause: Cause::TooManySteps(e),
+        })),
+        Ok(_) => solver.run_until(end, |s| {
+            if s.step % history_every == 0 {
+                history.write(s)?;
+                rest.observe(s);
+            }
+            if s.time >= next_snapshot as f64 * snapshot_dt - 0.5 * s.dt {
+                write_snapshot(dir, next_snapshot, s)?;
+                next_snapshot += 1;
+            }
+            progress(s.time, end);
+            Ok(())
+        }),
+    };
     let failure = match result {
         Ok(()) => None,
         Err(RunError::Io(e)) => return Err(e),

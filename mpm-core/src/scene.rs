@@ -949,6 +949,7 @@ mod tests {
     #[test]
     fn sizes_from_a_scene_are_bounded_before_allocation() {
         let dir = std::env::temp_dir().join("mpw_scene_limits_test");
+        let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("bad.toml");
         let text = std::fs::read_to_string(scenes().join("colliding_disks.toml")).unwrap();
@@ -967,6 +968,9 @@ mod tests {
             "{failure}"
         );
         assert!(failure.to_string().contains("time.end = 1e30"), "{failure}");
+        // the failure keeps its output, as any other (mpw simulate charts the history)
+        let history = std::fs::read_to_string(dir.join("history.csv")).unwrap();
+        assert_eq!(history.lines().count(), 1 + 2);
         let mut scene = load(&scenes().join("colliding_disks.toml")).unwrap();
         let Simulation::Planar(solver) = &mut scene.simulation else {
             unreachable!()

@@ -113,8 +113,8 @@ impl Dimension {
 
     /// The largest magnitude [SI] that a measured column or a metadata quantity of this
     /// dimension can hold in a test of metals, and the likely mistake behind a larger
-    /// value (issue 16). Wide on
-    /// purpose: it catches a mistyped cell and a wrong unit, not an unusual test.
+    /// value (issue 16). Wide on purpose: it catches a mistyped cell and a wrong unit,
+    /// not an unusual test.
     pub fn plausible_magnitude(self) -> (f64, &'static str) {
         match self {
             Dimension::Time => (1e8, "over three years: is a column in ms or µs declared as \"s\"?"),
