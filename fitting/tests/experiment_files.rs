@@ -91,10 +91,10 @@ fn unknown_unit_names_key_line_and_accepted_units() {
 
 #[test]
 fn missing_and_unknown_toml_keys_are_located() {
-    let toml = tensile_toml(TENSILE_COLUMNS, "").replace("temperature = \"20 degC\"\n", "");
+    let toml = tensile_toml(TENSILE_COLUMNS, "").replace("data = \"t.csv\"\n", "");
     let e = load_tensile("missing-key", &toml).unwrap_err();
     assert!(
-        matches!(&e, ExperimentError::Toml { message, .. } if message.contains("temperature")),
+        matches!(&e, ExperimentError::Toml { message, .. } if message.contains("data")),
         "{e}"
     );
     assert!(e.to_string().contains("t.toml:1:1"), "{e}");
@@ -414,4 +414,114 @@ fn implausible_metadata_names_the_key() {
         "{e}"
     );
     assert!(e.to_string().contains("beyond 1000 GPa"), "{e}");
+}
+
+/// A tensile record whose `#` header states rate and temperature (as the shared 304L
+/// records do), with stress scaled by `k`.
+fn headed_csv(rate: &str, temperature: &str, k: f64) -> String {
+    let mut csv = format!(
+        "# source: test\n# nominal_engineering_strain_rate_per_s: {rate}\n# {temperature}\ntime_s,engineering_strain,engineering_stress_pa\n"
+    );
+    for i in 0..5 {
+        let e = 0.01 * i as f64;
+        csv.push_str(&format!("{},{e},{}\n", i as f64, k * (300e6 + 1e9 * e)));
+    }
+    csv
+}
+
+const HEADED_TOML: &str = "kind = \"tensile\"\nname = \"g\"\ndata = \"rate_*.csv\"\n\
+     [columns]\ntime = { name = \"time_s\", unit = \"s\" }\n\
+     strain = { name = \"engineering_strain\", unit = \"1\" }\n\
+     stress = { name = \"engineering_stress_pa\", unit = \"Pa\" }\n";
+
+#[test]
+fn a_pattern_makes_one_experiment_per_record_with_rate_and_temperature_from_the_header() {
+    let dir = folder(
+        "pattern",
+        &[
+            ("rate_b.csv", &headed_csv("1800", "temperature_C: 20", 1.0)),
+            (
+                "rate_a.csv",
+                &headed_csv("0.01", "temperature_K: 297.04", 1.1),
+            ),
+            ("other.csv", &headed_csv("1", "temperature_K: 300", 1.0)),
+            ("g.toml", HEADED_TOML),
+        ],
+    );
+    let all = TensileExperiment::load_all(&dir.join("g.toml")).unwrap();
+    let names: Vec<&str> = all.iter().map(|e| e.name.as_str()).collect();
+    assert_eq!(names, ["g/rate_a", "g/rate_b"], "sorted by file name");
+    assert_eq!(all[0].nominal_strain_rate_per_s, 0.01);
+    assert_eq!(all[0].temperature_k, 297.04);
+    assert_eq!(all[1].nominal_strain_rate_per_s, 1800.0);
+    assert!((all[1].temperature_k - 293.15).abs() < 1e-12);
+    assert_eq!(
+        all[0].rate_source.to_string(),
+        "CSV header `nominal_engineering_strain_rate_per_s` (line 2)"
+    );
+    assert_eq!(
+        all[1].temperature_source.to_string(),
+        "CSV header `temperature_C` (line 3)"
+    );
+    // The TOML overrides the header, and says so.
+    let toml = format!("{HEADED_TOML}").replace("data =", "temperature = \"400 K\"\ndata =");
+    std::fs::write(dir.join("g.toml"), toml).unwrap();
+    let all = TensileExperiment::load_all(&dir.join("g.toml")).unwrap();
+    assert!(all.iter().all(|e| e.temperature_k == 400.0));
+    assert_eq!(all[0].temperature_source.to_string(), "TOML `temperature`");
+    // One record expected, two found.
+    let e = TensileExperiment::load(&dir.join("g.toml")).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("names 2 records where one is expected"),
+        "{e}"
+    );
+}
+
+#[test]
+fn missing_and_bad_header_metadata_name_the_file_line_and_keys() {
+    let no_temperature = headed_csv("1800", "operator: someone", 1.0);
+    let dir = folder(
+        "header-missing",
+        &[("rate_x.csv", &no_temperature), ("g.toml", HEADED_TOML)],
+    );
+    let e = TensileExperiment::load_all(&dir.join("g.toml")).unwrap_err();
+    let msg = e.to_string();
+    assert!(
+        matches!(e, ExperimentError::MissingMetadata { .. }),
+        "{msg}"
+    );
+    assert!(
+        msg.contains("rate_x.csv: no `temperature`") && msg.contains("`temperature_K`"),
+        "{msg}"
+    );
+    let bad = headed_csv("fast", "temperature_K: 297", 1.0);
+    let dir = folder(
+        "header-bad",
+        &[("rate_x.csv", &bad), ("g.toml", HEADED_TOML)],
+    );
+    let msg = TensileExperiment::load_all(&dir.join("g.toml"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.contains("rate_x.csv:2: header `nominal_engineering_strain_rate_per_s`: \"fast\""),
+        "{msg}"
+    );
+    let cold = headed_csv("1", "temperature_C: -300", 1.0);
+    let dir = folder(
+        "header-cold",
+        &[("rate_x.csv", &cold), ("g.toml", HEADED_TOML)],
+    );
+    let msg = TensileExperiment::load_all(&dir.join("g.toml"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.contains("rate_x.csv:3: header `temperature_C`") && msg.contains("positive"),
+        "{msg}"
+    );
+    let dir = folder("header-none", &[("g.toml", HEADED_TOML)]);
+    let msg = TensileExperiment::load_all(&dir.join("g.toml"))
+        .unwrap_err()
+        .to_string();
+    assert!(msg.contains("g.toml:3:8: `data`: no file matches"), "{msg}");
 }

@@ -5,11 +5,13 @@
 
 use crate::fit::charts;
 use crate::fit::fit_set::FitSet;
+use crate::fit::objective::Block;
 use crate::fit::report::{table, write_files};
-use crate::fit::run::{run_fit, Optimizer};
+use crate::fit::run::{run_fit, FitResult, Optimizer};
+use crate::fit::scatter::scatter;
 use anyhow::Result;
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -28,14 +30,52 @@ pub struct Args {
     /// Also compare Nelder-Mead, LM (exact) and LM (finite differences).
     #[arg(long)]
     pub compare: bool,
-    /// Validation run: fail unless every stage converged and every experiment's RMS
-    /// error is at most 5 % of its mean measured magnitude.
+    /// Validation run: fail unless every stage converged and every group's RMS error
+    /// against its mean measured curve (a single record: its own samples) is at most 5 %
+    /// of the mean measured magnitude.
     #[arg(long)]
     pub validate: bool,
 }
 
-/// Largest RMS error of a validated fit, as a fraction of the mean measured magnitude.
+/// Largest RMS error of a validated fit against a group's mean curve, as a fraction of
+/// the mean measured magnitude.
 pub const VALIDATION_RMS: f64 = 0.05;
+
+/// Fail unless every group's RMS against its mean curve is at most `VALIDATION_RMS` and,
+/// when `stages` (a fit, not a prediction), every stage converged.
+pub fn validate(file: &Path, set: &FitSet, result: &FitResult, stages: bool) -> Result<()> {
+    let mut failures = Vec::new();
+    for (i, s) in result.stages.iter().enumerate().filter(|_| stages) {
+        if !s.runs[s.best].converged {
+            failures.push(format!(
+                "stage {} did not converge: {}",
+                i + 1,
+                s.runs[s.best].termination
+            ));
+        }
+    }
+    let blocks: Vec<&Block> = set.blocks.iter().collect();
+    for g in scatter(&blocks, &result.predictions) {
+        if !(g.rms_vs_mean <= VALIDATION_RMS) {
+            failures.push(format!(
+                "{}: RMS {:.2} % of the mean measured value (against the mean of its {} record(s)) exceeds {:.0} %",
+                g.group.label,
+                100.0 * g.rms_vs_mean,
+                g.group.members.len(),
+                100.0 * VALIDATION_RMS
+            ));
+        }
+    }
+    if !failures.is_empty() {
+        anyhow::bail!(
+            "validation of {} failed:\n  {}",
+            file.display(),
+            failures.join("\n  ")
+        );
+    }
+    println!("validation passed");
+    Ok(())
+}
 
 fn progress(stage: usize, start: usize, p: &crate::fit::trace::HistoryPoint) {
     eprint!(
@@ -85,35 +125,7 @@ pub fn run(args: Args) -> Result<()> {
     }
     println!("report, CSVs and charts in {}", args.out.display());
     if args.validate {
-        let mut failures = Vec::new();
-        for (i, s) in result.stages.iter().enumerate() {
-            if !s.runs[s.best].converged {
-                failures.push(format!(
-                    "stage {} did not converge: {}",
-                    i + 1,
-                    s.runs[s.best].termination
-                ));
-            }
-        }
-        for (b, p) in set.blocks.iter().zip(&result.predictions) {
-            let rel = b.rms(p) / b.scale;
-            if !(rel <= VALIDATION_RMS) {
-                failures.push(format!(
-                    "{}: RMS {:.2} % of the mean measured value exceeds {:.0} %",
-                    b.name,
-                    100.0 * rel,
-                    100.0 * VALIDATION_RMS
-                ));
-            }
-        }
-        if !failures.is_empty() {
-            anyhow::bail!(
-                "validation of {} failed:\n  {}",
-                args.set.display(),
-                failures.join("\n  ")
-            );
-        }
-        println!("validation passed");
+        validate(&args.set, &set, &result, true)?;
     }
     Ok(())
 }

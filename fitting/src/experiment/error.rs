@@ -121,6 +121,23 @@ pub enum ExperimentError {
         file: PathBuf,
         source: Box<materials::limits::TooLarge>,
     },
+    #[error(
+        "{}: no `{key}`: the experiment TOML {} does not state it and the CSV header has none of {header_keys}",
+        csv.display(), toml.display()
+    )]
+    MissingMetadata {
+        toml: PathBuf,
+        csv: PathBuf,
+        key: String,
+        header_keys: String,
+    },
+    #[error("{}:{line}: header `{key}`: {problem}", file.display())]
+    BadHeader {
+        file: PathBuf,
+        line: usize,
+        key: String,
+        problem: String,
+    },
     #[error("{}: {found} data rows, at least {needed} needed", file.display())]
     TooFewRows {
         file: PathBuf,

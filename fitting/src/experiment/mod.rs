@@ -6,6 +6,8 @@
 //! in the TOML (`data = "..."`) is relative to the TOML's folder.
 
 mod error;
+pub mod header;
+mod pattern;
 mod shpb;
 mod sidecar;
 mod table;
@@ -32,6 +34,18 @@ impl Experiment {
             Experiment::Shpb(e) => &e.name,
         }
     }
+}
+
+/// Read the experiment TOML at `toml_file` and every record it names (a tensile TOML may
+/// name a folder or a pattern of CSVs; an SHPB TOML names one record).
+pub fn load_experiments(toml_file: &Path) -> Result<Vec<Experiment>, ExperimentError> {
+    let sidecar = sidecar::Sidecar::read(toml_file)?;
+    let kind: sidecar::KindOnly = sidecar.parse()?;
+    if kind.kind.get_ref() == "tensile" {
+        let all = TensileExperiment::load_all(toml_file)?;
+        return Ok(all.into_iter().map(Experiment::Tensile).collect());
+    }
+    load_experiment(toml_file).map(|e| vec![e])
 }
 
 /// Read the experiment TOML at `toml_file` (its `kind` decides the type) and its CSV.

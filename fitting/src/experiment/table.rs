@@ -1,7 +1,8 @@
 //! A numeric CSV table: `#` comment lines and blank lines, one header line of column
 //! names, then rows of comma-separated numbers (no quoting).
 //! Each row keeps its line number so that every bad value can be reported as
-//! `file:line: column k "name"`.
+//! `file:line: column k "name"`. The comment lines above the header are kept: they may
+//! hold metadata (`# temperature_K: 297.04`, read by `header`).
 
 use super::error::{ExperimentError, Location};
 use materials::limits::TEXT_FILE_BYTES;
@@ -11,6 +12,8 @@ pub(crate) struct CsvTable {
     pub file: PathBuf,
     header_line: usize,
     names: Vec<String>,
+    /// (line number, text after `#`) of the comment lines above the header.
+    pub comments: Vec<(usize, String)>,
     /// (line number, fields) of each data row.
     rows: Vec<(usize, Vec<String>)>,
 }
@@ -33,10 +36,17 @@ impl CsvTable {
         })?;
         let mut header: Option<(usize, Vec<String>)> = None;
         let mut rows = Vec::new();
+        let mut comments = Vec::new();
         for (k, raw) in text.lines().enumerate() {
             let line = k + 1;
             let trimmed = raw.trim();
-            if trimmed.is_empty() || trimmed.starts_with('#') {
+            if let Some(comment) = trimmed.strip_prefix('#') {
+                if header.is_none() {
+                    comments.push((line, comment.trim().to_string()));
+                }
+                continue;
+            }
+            if trimmed.is_empty() {
                 continue;
             }
             let fields: Vec<String> = trimmed.split(',').map(|f| f.trim().to_string()).collect();
@@ -77,6 +87,7 @@ impl CsvTable {
             header_line,
             names,
             rows,
+            comments,
         })
     }
 

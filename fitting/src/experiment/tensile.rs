@@ -5,9 +5,9 @@
 //! ```toml
 //! kind = "tensile"
 //! name = "304L 1e-2/s ring 1-17"        # optional, default: the TOML's file stem
-//! data = "path/relative/to/this.csv"
-//! temperature = "297.04 K"
-//! nominal_strain_rate = "0.01 1/s"
+//! data = "path/relative/to/this.csv"  # or a folder, or a pattern: "304L/rate_0.01__*.csv"
+//! temperature = "297.04 K"             # optional if the CSV header states it
+//! nominal_strain_rate = "0.01 1/s"     # optional if the CSV header states it
 //! [columns]
 //! time = { name = "time_s", unit = "s" }
 //! strain = { name = "engineering_strain", unit = "1" }     # or extension = {..., unit = "mm"}
@@ -24,8 +24,16 @@
 //! ```
 //! Engineering strain ε = ΔL/L0 [-], engineering stress σ = F/A0 [Pa]. All samples are
 //! kept; `used_range()` says which of them a homogeneous model should be compared with.
+//!
+//! A `data` folder or pattern (`pattern`) makes one experiment per matching CSV, named
+//! `<name>/<csv stem>`, all with the TOML's columns, geometry and window. Temperature and
+//! nominal rate come from the TOML where it states them, otherwise from each CSV's `#`
+//! header (`header::TEMPERATURE_KEYS`, `header::STRAIN_RATE_KEYS`); each experiment says
+//! which it read.
 
 use super::error::ExperimentError;
+use super::header::{self, Source};
+use super::pattern;
 use super::sidecar::{ColumnSpec, Sidecar};
 use super::table::CsvTable;
 use super::units::Dimension;
@@ -40,8 +48,8 @@ struct TensileFile {
     kind: Spanned<String>,
     name: Option<String>,
     data: Spanned<String>,
-    temperature: Spanned<String>,
-    nominal_strain_rate: Spanned<String>,
+    temperature: Option<Spanned<String>>,
+    nominal_strain_rate: Option<Spanned<String>>,
     columns: Spanned<TensileColumns>,
     geometry: Option<GeometrySpec>,
     window: Option<Spanned<WindowSpec>>,
@@ -91,6 +99,9 @@ pub struct TensileExperiment {
     pub temperature_k: f64,
     /// Nominal engineering strain rate [1/s]; models should follow `time_s`/`eng_strain`.
     pub nominal_strain_rate_per_s: f64,
+    /// Where the temperature and the nominal rate were read.
+    pub temperature_source: Source,
+    pub rate_source: Source,
     /// Initial cross-section [m²], if the TOML states it.
     pub area_m2: Option<f64>,
     /// Gauge length [m], if the TOML states it.
@@ -99,19 +110,73 @@ pub struct TensileExperiment {
 }
 
 impl TensileExperiment {
-    /// Read a tensile experiment TOML and the CSV it names.
+    /// Read a tensile experiment TOML and the one CSV it names.
     pub fn load(toml_file: &Path) -> Result<TensileExperiment, ExperimentError> {
+        let mut all = Self::load_all(toml_file)?;
+        if all.len() != 1 {
+            let sidecar = Sidecar::read(toml_file)?;
+            let spec: TensileFile = sidecar.parse()?;
+            return Err(sidecar.invalid(
+                "data",
+                spec.data.span(),
+                format!("names {} records where one is expected", all.len()),
+            ));
+        }
+        Ok(all.remove(0))
+    }
+
+    /// Read a tensile experiment TOML and every CSV it names (one, or the records of a
+    /// folder or pattern, sorted by name).
+    pub fn load_all(toml_file: &Path) -> Result<Vec<TensileExperiment>, ExperimentError> {
         let sidecar = Sidecar::read(toml_file)?;
         let spec: TensileFile = sidecar.parse()?;
         sidecar.expect_kind(&spec.kind, "tensile")?;
-        let temperature_k =
-            sidecar.positive("temperature", &spec.temperature, Dimension::Temperature)?;
-        let nominal_strain_rate_per_s = sidecar.positive(
-            "nominal_strain_rate",
-            &spec.nominal_strain_rate,
-            Dimension::StrainRate,
-        )?;
-        let g = spec.geometry.as_ref();
+        let geometry = Geometry::read(&sidecar, spec.geometry.as_ref())?;
+        let data = sidecar.relative_path(spec.data.get_ref());
+        let name = spec.name.clone().unwrap_or_else(|| {
+            toml_file
+                .file_stem()
+                .map_or_else(|| "tensile".into(), |s| s.to_string_lossy().into_owned())
+        });
+        if !pattern::is_many(&data) {
+            return Ok(vec![read_record(&sidecar, &spec, &geometry, data, name)?]);
+        }
+        let files = pattern::expand(&data).map_err(|reason| ExperimentError::Io {
+            file: data.clone(),
+            reason,
+        })?;
+        if files.is_empty() {
+            return Err(sidecar.invalid(
+                "data",
+                spec.data.span(),
+                format!("no file matches \"{}\"", data.display()),
+            ));
+        }
+        files
+            .into_iter()
+            .map(|file| {
+                let stem = file.file_stem().unwrap_or_default().to_string_lossy();
+                let record = format!("{name}/{stem}");
+                read_record(&sidecar, &spec, &geometry, file.clone(), record)
+            })
+            .collect()
+    }
+
+    /// Indices of the samples inside the valid window (by default from the first sample
+    /// up to and including the maximum engineering stress).
+    pub fn used_range(&self) -> Range<usize> {
+        self.used.clone()
+    }
+}
+
+/// Cross-section and gauge length as the TOML states them.
+struct Geometry {
+    area_m2: Option<f64>,
+    gauge_length_m: Option<f64>,
+}
+
+impl Geometry {
+    fn read(sidecar: &Sidecar, g: Option<&GeometrySpec>) -> Result<Geometry, ExperimentError> {
         let length = |key: &str, v: &Option<Spanned<String>>| {
             v.as_ref()
                 .map(|v| sidecar.positive(&format!("geometry.{key}"), v, Dimension::Length))
@@ -138,101 +203,163 @@ impl TensileExperiment {
             }
             None => None,
         };
-
-        let data_file = sidecar.relative_path(spec.data.get_ref());
-        let table = CsvTable::read(&data_file)?;
-        if table.len() < 2 {
-            return Err(ExperimentError::TooFewRows {
-                file: data_file,
-                found: table.len(),
-                needed: 2,
-            });
-        }
-        let cols = spec.columns.get_ref();
-        let columns_span = spec.columns.span();
-        let time_s = sidecar.column(&table, "columns.time", &cols.time, Dimension::Time)?;
-        sidecar.check_time_increases(&table, &cols.time, &time_s)?;
-        let eng_strain = match (&cols.strain, &cols.extension) {
-            (Some(s), None) => sidecar.column(&table, "columns.strain", s, Dimension::Strain)?,
-            (None, Some(x)) => {
-                let l0 = gauge_length_m.ok_or_else(|| {
-                    sidecar.invalid(
-                        "columns.extension",
-                        x.name.span(),
-                        "an extension column needs `geometry.gauge_length`",
-                    )
-                })?;
-                let extension =
-                    sidecar.column(&table, "columns.extension", x, Dimension::Length)?;
-                let strain: Vec<f64> = extension.iter().map(|u| u / l0).collect();
-                let (limit, _) = Dimension::Strain.plausible_magnitude();
-                let how = format!("over the gauge length {l0:e} m as a strain, beyond {limit}: is the extension's unit or the gauge length wrong?");
-                let source = (&extension[..], "m");
-                sidecar.check_plausible(&table, x, source, &strain, limit, &how)?;
-                strain
-            }
-            _ => {
-                return Err(sidecar.invalid(
-                    "columns",
-                    columns_span,
-                    "expected exactly one of `strain` and `extension`",
-                ))
-            }
-        };
-        let eng_stress_pa = match (&cols.stress, &cols.force) {
-            (Some(s), None) => sidecar.column(&table, "columns.stress", s, Dimension::Stress)?,
-            (None, Some(f)) => {
-                let a0 = area_m2.ok_or_else(|| {
-                    sidecar.invalid(
-                        "columns.force",
-                        f.name.span(),
-                        "a force column needs `geometry.area` or `geometry.diameter`",
-                    )
-                })?;
-                let force = sidecar.column(&table, "columns.force", f, Dimension::Force)?;
-                let stress: Vec<f64> = force.iter().map(|f| f / a0).collect();
-                let (limit, _) = Dimension::Stress.plausible_magnitude();
-                let how = format!("Pa over the area A0 = {a0:e} m² as a stress, beyond {limit:e} Pa: is the force's unit or the cross-section wrong?");
-                let source = (&force[..], "N");
-                sidecar.check_plausible(&table, f, source, &stress, limit, &how)?;
-                stress
-            }
-            _ => {
-                return Err(sidecar.invalid(
-                    "columns",
-                    columns_span,
-                    "expected exactly one of `stress` and `force`",
-                ))
-            }
-        };
-
-        let used = match &spec.window {
-            Some(w) => used_range(&sidecar, w, &time_s, &eng_strain, &eng_stress_pa)?,
-            None => up_to_max(&eng_stress_pa, 0..time_s.len()),
-        };
-        let name = spec.name.unwrap_or_else(|| {
-            toml_file
-                .file_stem()
-                .map_or_else(|| "tensile".into(), |s| s.to_string_lossy().into_owned())
-        });
-        Ok(TensileExperiment {
-            name,
-            data_file,
-            time_s,
-            eng_strain,
-            eng_stress_pa,
-            temperature_k,
-            nominal_strain_rate_per_s,
+        Ok(Geometry {
             area_m2,
             gauge_length_m,
-            used,
         })
     }
+}
 
-    /// Indices of the samples inside the valid window (by default from the first sample
-    /// up to and including the maximum engineering stress).
-    pub fn used_range(&self) -> Range<usize> {
-        self.used.clone()
+/// A metadata value: the TOML's `key` where it is given, otherwise the first of
+/// `header_keys` in the CSV header of `table`.
+fn metadata(
+    sidecar: &Sidecar,
+    table: &CsvTable,
+    (key, value): (&str, &Option<Spanned<String>>),
+    header_keys: &[(&'static str, &'static str)],
+    dimension: Dimension,
+) -> Result<(f64, Source), ExperimentError> {
+    if let Some(v) = value {
+        let si = sidecar.positive(key, v, dimension)?;
+        return Ok((si, Source::Toml { key: key.into() }));
+    }
+    match header::lookup(table, header_keys, dimension) {
+        Ok(Some(found)) => Ok(found),
+        Ok(None) => Err(ExperimentError::MissingMetadata {
+            toml: sidecar.file.clone(),
+            csv: table.file.clone(),
+            key: key.into(),
+            header_keys: header::names(header_keys),
+        }),
+        Err(bad) => Err(ExperimentError::BadHeader {
+            file: table.file.clone(),
+            line: bad.line,
+            key: bad.key,
+            problem: bad.problem,
+        }),
+    }
+}
+
+/// One record: the CSV `data_file` read with the TOML's columns, geometry and window.
+fn read_record(
+    sidecar: &Sidecar,
+    spec: &TensileFile,
+    geometry: &Geometry,
+    data_file: PathBuf,
+    name: String,
+) -> Result<TensileExperiment, ExperimentError> {
+    let table = CsvTable::read(&data_file)?;
+    if table.len() < 2 {
+        return Err(ExperimentError::TooFewRows {
+            file: data_file,
+            found: table.len(),
+            needed: 2,
+        });
+    }
+    let (temperature_k, temperature_source) = metadata(
+        sidecar,
+        &table,
+        ("temperature", &spec.temperature),
+        header::TEMPERATURE_KEYS,
+        Dimension::Temperature,
+    )?;
+    let (nominal_strain_rate_per_s, rate_source) = metadata(
+        sidecar,
+        &table,
+        ("nominal_strain_rate", &spec.nominal_strain_rate),
+        header::STRAIN_RATE_KEYS,
+        Dimension::StrainRate,
+    )?;
+    let cols = spec.columns.get_ref();
+    let time_s = sidecar.column(&table, "columns.time", &cols.time, Dimension::Time)?;
+    sidecar.check_time_increases(&table, &cols.time, &time_s)?;
+    let eng_strain = strain_column(sidecar, &table, spec, geometry)?;
+    let eng_stress_pa = stress_column(sidecar, &table, spec, geometry)?;
+    let used = match &spec.window {
+        Some(w) => used_range(sidecar, w, &time_s, &eng_strain, &eng_stress_pa)?,
+        None => up_to_max(&eng_stress_pa, 0..time_s.len()),
+    };
+    Ok(TensileExperiment {
+        name,
+        data_file,
+        time_s,
+        eng_strain,
+        eng_stress_pa,
+        temperature_k,
+        nominal_strain_rate_per_s,
+        temperature_source,
+        rate_source,
+        area_m2: geometry.area_m2,
+        gauge_length_m: geometry.gauge_length_m,
+        used,
+    })
+}
+
+/// Engineering strain [-]: the strain column, or the extension over the gauge length.
+fn strain_column(
+    sidecar: &Sidecar,
+    table: &CsvTable,
+    spec: &TensileFile,
+    geometry: &Geometry,
+) -> Result<Vec<f64>, ExperimentError> {
+    let cols = spec.columns.get_ref();
+    match (&cols.strain, &cols.extension) {
+        (Some(s), None) => sidecar.column(table, "columns.strain", s, Dimension::Strain),
+        (None, Some(x)) => {
+            let l0 = geometry.gauge_length_m.ok_or_else(|| {
+                sidecar.invalid(
+                    "columns.extension",
+                    x.name.span(),
+                    "an extension column needs `geometry.gauge_length`",
+                )
+            })?;
+            let extension = sidecar.column(table, "columns.extension", x, Dimension::Length)?;
+            let strain: Vec<f64> = extension.iter().map(|u| u / l0).collect();
+            let (limit, _) = Dimension::Strain.plausible_magnitude();
+            let how = format!("over the gauge length {l0:e} m as a strain, beyond {limit}: is the extension's unit or the gauge length wrong?");
+            let source = (&extension[..], "m");
+            sidecar.check_plausible(table, x, source, &strain, limit, &how)?;
+            Ok(strain)
+        }
+        _ => Err(sidecar.invalid(
+            "columns",
+            spec.columns.span(),
+            "expected exactly one of `strain` and `extension`",
+        )),
+    }
+}
+
+/// Engineering stress [Pa]: the stress column, or the force over the cross-section.
+fn stress_column(
+    sidecar: &Sidecar,
+    table: &CsvTable,
+    spec: &TensileFile,
+    geometry: &Geometry,
+) -> Result<Vec<f64>, ExperimentError> {
+    let cols = spec.columns.get_ref();
+    match (&cols.stress, &cols.force) {
+        (Some(s), None) => sidecar.column(table, "columns.stress", s, Dimension::Stress),
+        (None, Some(f)) => {
+            let a0 = geometry.area_m2.ok_or_else(|| {
+                sidecar.invalid(
+                    "columns.force",
+                    f.name.span(),
+                    "a force column needs `geometry.area` or `geometry.diameter`",
+                )
+            })?;
+            let force = sidecar.column(table, "columns.force", f, Dimension::Force)?;
+            let stress: Vec<f64> = force.iter().map(|f| f / a0).collect();
+            let (limit, _) = Dimension::Stress.plausible_magnitude();
+            let how = format!("Pa over the area A0 = {a0:e} m² as a stress, beyond {limit:e} Pa: is the force's unit or the cross-section wrong?");
+            let source = (&force[..], "N");
+            sidecar.check_plausible(table, f, source, &stress, limit, &how)?;
+            Ok(stress)
+        }
+        _ => Err(sidecar.invalid(
+            "columns",
+            spec.columns.span(),
+            "expected exactly one of `stress` and `force`",
+        )),
     }
 }
 

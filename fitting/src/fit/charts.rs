@@ -4,8 +4,10 @@
 //! Line charts use `crate::chart`; the correlation matrix is a plotters heat map.
 
 use super::fit_set::FitSet;
+use super::objective::Block;
 use super::report::sanitize;
 use super::run::FitResult;
+use super::scatter::scatter;
 use crate::chart::{LineChart, Series};
 use anyhow::Result;
 use plotters::prelude::*;
@@ -57,6 +59,7 @@ pub fn fit_charts(dir: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
         fit.write_png(&dir.join(format!("{stem}_fit.png")))?;
         res.write_png(&dir.join(format!("{stem}_residual.png")))?;
     }
+    scatter_charts(dir, set, &result.predictions)?;
     let mut conv = LineChart::new(
         "convergence",
         "model evaluations (real + AD passes) [-]",
@@ -84,6 +87,61 @@ pub fn fit_charts(dir: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
                 &s.correlation,
             )?;
         }
+    }
+    Ok(())
+}
+
+/// Per group of several records: the mean measured curve, its ±1 sd band and the mean of
+/// the model's predictions (`fit::scatter`).
+pub fn scatter_charts(dir: &Path, set: &FitSet, predictions: &[Vec<f64>]) -> Result<()> {
+    let blocks: Vec<&Block> = set.blocks.iter().collect();
+    for g in scatter(&blocks, predictions) {
+        if g.strain.is_empty() {
+            continue;
+        }
+        let b = blocks[g.group.members[0]];
+        let band = |sign: f64| -> Vec<f64> {
+            g.mean
+                .iter()
+                .zip(&g.sd)
+                .map(|(m, s)| m + sign * s)
+                .collect()
+        };
+        let n = g.group.members.len();
+        LineChart::new(
+            format!("{}: {n} records, mean and ±1 sd, model", g.group.label),
+            &b.x_label,
+            &b.y_label,
+        )
+        .with(Series::scaled(
+            "measured mean",
+            &g.strain,
+            &g.mean,
+            1.0,
+            b.y_chart_scale,
+        ))
+        .with(Series::scaled(
+            "mean + sd",
+            &g.strain,
+            &band(1.0),
+            1.0,
+            b.y_chart_scale,
+        ))
+        .with(Series::scaled(
+            "mean - sd",
+            &g.strain,
+            &band(-1.0),
+            1.0,
+            b.y_chart_scale,
+        ))
+        .with(Series::scaled(
+            "model (mean over records)",
+            &g.strain,
+            &g.model_mean,
+            1.0,
+            b.y_chart_scale,
+        ))
+        .write_png(&dir.join(format!("group_{}_scatter.png", sanitize(&g.group.label))))?;
     }
     Ok(())
 }

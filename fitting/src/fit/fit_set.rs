@@ -9,7 +9,7 @@ use super::shpb_input::face_signals;
 use super::shpb_specimen::ShpbSpecimen;
 use super::single_point::SinglePoint;
 use super::tensile::{Tensile, Thermal};
-use crate::experiment::{load_experiment, Experiment, ShpbExperiment, TensileExperiment};
+use crate::experiment::{load_experiments, Experiment, ShpbExperiment, TensileExperiment};
 use anyhow::{bail, Context, Result};
 use materials::material::Model;
 use materials::AnyModel;
@@ -78,16 +78,18 @@ impl FitSet {
         let mut blocks = Vec::new();
         for (k, entry) in set.experiments.iter().enumerate() {
             let file = resolve(folder, &entry.file);
-            let exp = load_experiment(&file)?;
-            let block = build_block(&base, &exp, entry).with_context(|| {
-                format!(
-                    "{}: experiment {} ({})",
-                    path.display(),
-                    k + 1,
-                    file.display()
-                )
-            })?;
-            blocks.push(block);
+            for exp in load_experiments(&file)? {
+                let block = build_block(&base, &exp, entry).with_context(|| {
+                    format!(
+                        "{}: experiment {} ({}, record `{}`)",
+                        path.display(),
+                        k + 1,
+                        file.display(),
+                        exp.name()
+                    )
+                })?;
+                blocks.push(block);
+            }
         }
         let stages = if set.stages.is_empty() {
             vec![Stage {
@@ -219,6 +221,14 @@ fn tensile_block(
     )?;
     block.rate_per_s = e.nominal_strain_rate_per_s;
     block.temperature_k = e.temperature_k;
+    block.group = Some(format!(
+        "{} 1/s, {:.1} K",
+        e.nominal_strain_rate_per_s, e.temperature_k
+    ));
+    block.metadata_source = format!(
+        "rate: {}; temperature: {}",
+        e.rate_source, e.temperature_source
+    );
     Ok(block)
 }
 

@@ -16,6 +16,7 @@ pub mod params;
 pub mod preheated;
 pub mod report;
 pub mod run;
+pub mod scatter;
 pub mod set_file;
 pub mod shpb_input;
 pub mod shpb_specimen;

@@ -38,6 +38,11 @@ pub struct Block {
     pub rate_per_s: f64,
     /// Test temperature [K].
     pub temperature_k: f64,
+    /// Records of one group (tensile: same nominal rate and temperature) are compared as
+    /// a specimen population (`fit::scatter`); `None`: a group of its own.
+    pub group: Option<String>,
+    /// Where rate and temperature were read (TOML key or CSV header line), for reports.
+    pub metadata_source: String,
     /// SHPB: mean equilibrium ratio R = 2 |F1 − F2| / |F1 + F2| over the window [-]
     /// (NaN for other experiments).
     pub equilibrium_ratio: f64,
@@ -87,6 +92,8 @@ impl Block {
             channels: vec!["measured".into()],
             rate_per_s: f64::NAN,
             temperature_k: f64::NAN,
+            group: None,
+            metadata_source: String::new(),
             equilibrium_ratio: f64::NAN,
         })
     }
@@ -104,6 +111,18 @@ impl Block {
             .sum();
         (s / self.measured.len() as f64).sqrt()
     }
+}
+
+/// Predictions of every experiment of `blocks` with `material`, in parallel.
+pub fn predict(blocks: &[&Block], material: &Material) -> Result<Vec<Vec<f64>>> {
+    blocks
+        .par_iter()
+        .map(|b| {
+            b.model
+                .predict(material)
+                .with_context(|| format!("experiment `{}`", b.name))
+        })
+        .collect()
 }
 
 /// How the Jacobian of the residuals is formed.
@@ -166,16 +185,8 @@ impl<'a> Objective<'a> {
 
     /// Predictions of every experiment at bounded parameters `p`.
     pub fn predictions(&self, p: &[f64]) -> Result<Vec<Vec<f64>>> {
-        let material = self.material(p);
         self.evaluations.fetch_add(1, Ordering::Relaxed);
-        self.blocks
-            .par_iter()
-            .map(|b| {
-                b.model
-                    .predict(&material)
-                    .with_context(|| format!("experiment `{}`", b.name))
-            })
-            .collect()
+        predict(&self.blocks, &self.material(p))
     }
 
     fn stack(&self, predictions: &[Vec<f64>]) -> Vec<f64> {

@@ -5,7 +5,9 @@
 //! truth. Also the CSV of measured against fitted values per experiment.
 
 use super::fit_set::FitSet;
+use super::objective::Block;
 use super::run::FitResult;
+use super::scatter::scatter;
 use anyhow::Result;
 use materials::material::Model;
 use serde::Serialize;
@@ -52,6 +54,23 @@ struct ExperimentRow {
     rms_percent_of_mean: f64,
     /// SHPB: mean equilibrium ratio R over the window.
     equilibrium_ratio: Option<f64>,
+    /// Tensile: where rate and temperature were read.
+    metadata_source: Option<String>,
+}
+
+/// A group's specimen scatter and the fit against it (`fit::scatter`).
+#[derive(Serialize)]
+struct GroupRow {
+    group: String,
+    records: usize,
+    /// Common strain range of the records [-].
+    strain_range: Option<[f64; 2]>,
+    /// [strain, CV %] at fixed strains.
+    cv_percent_at_strain: Vec<[f64; 2]>,
+    cv_mean_percent: Option<f64>,
+    rms_vs_mean_curve_percent: f64,
+    rms_vs_single_records_percent: f64,
+    verdict: String,
 }
 
 #[derive(Serialize)]
@@ -59,8 +78,29 @@ struct ReportFile {
     set: String,
     final_parameters: Vec<(String, f64)>,
     stages: Vec<StageRow>,
+    groups: Vec<GroupRow>,
     experiments: Vec<ExperimentRow>,
     total_wall_time_s: f64,
+}
+
+fn group_rows(set: &FitSet, result: &FitResult) -> Vec<GroupRow> {
+    let blocks: Vec<&Block> = set.blocks.iter().collect();
+    scatter(&blocks, &result.predictions)
+        .iter()
+        .map(|s| GroupRow {
+            group: s.group.label.clone(),
+            records: s.group.members.len(),
+            strain_range: s
+                .strain
+                .first()
+                .map(|&lo| [lo, s.strain[s.strain.len() - 1]]),
+            cv_percent_at_strain: s.cv_at.iter().map(|&(e, cv)| [e, 100.0 * cv]).collect(),
+            cv_mean_percent: Some(100.0 * s.cv_mean).filter(|c| c.is_finite()),
+            rms_vs_mean_curve_percent: 100.0 * s.rms_vs_mean,
+            rms_vs_single_records_percent: 100.0 * s.rms_vs_records,
+            verdict: s.verdict(),
+        })
+        .collect()
 }
 
 fn experiment_rows(set: &FitSet, result: &FitResult) -> Vec<ExperimentRow> {
@@ -83,6 +123,7 @@ fn experiment_rows(set: &FitSet, result: &FitResult) -> Vec<ExperimentRow> {
                 },
                 rms_percent_of_mean: 100.0 * rms / b.scale,
                 equilibrium_ratio: Some(b.equilibrium_ratio).filter(|r| r.is_finite()),
+                metadata_source: Some(b.metadata_source.clone()).filter(|s| !s.is_empty()),
             }
         })
         .collect()
@@ -139,6 +180,7 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
         set: set.name.clone(),
         final_parameters,
         stages,
+        groups: group_rows(set, result),
         experiments: experiment_rows(set, result),
         total_wall_time_s: result.wall_s,
     }
@@ -211,9 +253,16 @@ pub fn table(set: &FitSet, result: &FitResult) -> String {
         }
     }
     let _ = writeln!(out, "\nExperiments (final parameters):");
+    let w = r
+        .experiments
+        .iter()
+        .map(|e| e.name.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(28);
     let _ = writeln!(
         out,
-        "  {:<28} {:>10} {:>9} {:>8} {:>14} {:>8} {:>6}",
+        "  {:<w$} {:>10} {:>9} {:>8} {:>14} {:>8} {:>6}",
         "name", "rate 1/s", "T K", "samples", "RMS", "RMS %", "R"
     );
     for e in &r.experiments {
@@ -227,9 +276,26 @@ pub fn table(set: &FitSet, result: &FitResult) -> String {
             .map_or_else(|| "-".to_string(), |r| format!("{r:.3}"));
         let _ = writeln!(
             out,
-            "  {:<28} {:>10.3e} {:>9.2} {:>8} {:>14} {:>8.3} {:>6}",
+            "  {:<w$} {:>10.3e} {:>9.2} {:>8} {:>14} {:>8.3} {:>6}",
             e.name, e.rate_per_s, e.temperature_k, e.samples, rms, e.rms_percent_of_mean, ratio
         );
+    }
+    if r.groups.iter().any(|g| g.records > 1) {
+        let _ = writeln!(
+            out,
+            "\nSpecimen scatter (fit against each group's mean curve):"
+        );
+        for g in &r.groups {
+            let _ = writeln!(out, "  {}", g.verdict);
+            if !g.cv_percent_at_strain.is_empty() {
+                let cvs: Vec<String> = g
+                    .cv_percent_at_strain
+                    .iter()
+                    .map(|[e, cv]| format!("{:.0} %: {cv:.2} %", 100.0 * e))
+                    .collect();
+                let _ = writeln!(out, "    CV at strain {}", cvs.join(", "));
+            }
+        }
     }
     let _ = writeln!(out, "\nTotal wall time {:.2} s", r.total_wall_time_s);
     out

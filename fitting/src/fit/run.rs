@@ -10,7 +10,7 @@ use super::fit_set::FitSet;
 use super::lm::{levenberg_marquardt, LmOptions};
 use super::model::{with_values, Material};
 use super::nelder_mead::{nelder_mead, NmOptions};
-use super::objective::{JacobianKind, Objective};
+use super::objective::{predict, JacobianKind, Objective};
 use super::params::ParamSpace;
 use super::trace::{HistoryPoint, OptimResult};
 use anyhow::{bail, Result};
@@ -168,12 +168,7 @@ pub fn run_fit(
             runs,
         });
     }
-    let all = Objective::new(
-        material,
-        set.blocks.iter().collect(),
-        ParamSpace::new(vec![set.params[0].clone()])?,
-    )?;
-    let predictions = all.predictions(&[material.param(&set.params[0].name).unwrap()])?;
+    let predictions = predict(&set.blocks.iter().collect::<Vec<_>>(), &material)?;
     Ok(FitResult {
         stages,
         material,
