@@ -4,6 +4,7 @@ pub mod bench;
 pub mod bench_mpm;
 pub mod drive;
 pub mod fit;
+pub mod predict;
 pub mod shpb;
 pub mod simulate;
 pub mod synth;

@@ -60,6 +60,9 @@ pub fn fit_charts(dir: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
         res.write_png(&dir.join(format!("{stem}_residual.png")))?;
     }
     scatter_charts(dir, set, &result.predictions)?;
+    if result.stages.is_empty() {
+        return Ok(());
+    }
     let mut conv = LineChart::new(
         "convergence",
         "model evaluations (real + AD passes) [-]",

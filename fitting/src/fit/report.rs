@@ -199,7 +199,21 @@ fn show(name: &str, v: f64) -> String {
 pub fn table(set: &FitSet, result: &FitResult) -> String {
     let r = build(set, result);
     let mut out = String::new();
-    let _ = writeln!(out, "Fit of \"{}\"", r.set);
+    if r.stages.is_empty() {
+        let values: Vec<String> = r
+            .final_parameters
+            .iter()
+            .map(|(n, v)| format!("{n} = {}", show(n, *v)))
+            .collect();
+        let _ = writeln!(
+            out,
+            "Prediction of \"{}\" (no optimizer) with {}",
+            r.set,
+            values.join(", ")
+        );
+    } else {
+        let _ = writeln!(out, "Fit of \"{}\"", r.set);
+    }
     for (i, s) in r.stages.iter().enumerate() {
         let _ = writeln!(
             out,

@@ -87,6 +87,12 @@ pub fn run_fit(
     optimizer: Optimizer,
     progress: &dyn Fn(usize, usize, &HistoryPoint),
 ) -> Result<FitResult> {
+    if set.params.is_empty() {
+        bail!(
+            "{}: the set has no [[parameter]], nothing to fit; `mpw predict` evaluates it",
+            set.file.display()
+        );
+    }
     let t0 = std::time::Instant::now();
     let mut material = set.base;
     let mut stages = Vec::new();
@@ -171,6 +177,18 @@ pub fn run_fit(
     let predictions = predict(&set.blocks.iter().collect::<Vec<_>>(), &material)?;
     Ok(FitResult {
         stages,
+        material,
+        predictions,
+        wall_s: t0.elapsed().as_secs_f64(),
+    })
+}
+
+/// Evaluate every experiment of `set` with `material`: a result without stages.
+pub fn run_predict(set: &FitSet, material: Material) -> Result<FitResult> {
+    let t0 = std::time::Instant::now();
+    let predictions = predict(&set.blocks.iter().collect::<Vec<_>>(), &material)?;
+    Ok(FitResult {
+        stages: Vec::new(),
         material,
         predictions,
         wall_s: t0.elapsed().as_secs_f64(),

@@ -54,7 +54,8 @@ pub struct SetFile {
     pub fixed: BTreeMap<String, f64>,
     #[serde(default)]
     pub truth: BTreeMap<String, f64>,
-    #[serde(rename = "parameter")]
+    /// Free parameters; none: the set can only be evaluated (`mpw predict`).
+    #[serde(default, rename = "parameter")]
     pub parameters: Vec<ParameterEntry>,
     #[serde(rename = "experiment")]
     pub experiments: Vec<ExperimentEntry>,
