@@ -464,7 +464,7 @@ fn a_pattern_makes_one_experiment_per_record_with_rate_and_temperature_from_the_
         "CSV header `temperature_C` (line 3)"
     );
     // The TOML overrides the header, and says so.
-    let toml = format!("{HEADED_TOML}").replace("data =", "temperature = \"400 K\"\ndata =");
+    let toml = HEADED_TOML.replace("data =", "temperature = \"400 K\"\ndata =");
     std::fs::write(dir.join("g.toml"), toml).unwrap();
     let all = TensileExperiment::load_all(&dir.join("g.toml")).unwrap();
     assert!(all.iter().all(|e| e.temperature_k == 400.0));

@@ -3,12 +3,17 @@
 //! `--compare` also runs Nelder-Mead, LM with the exact Jacobian and LM with finite
 //! differences on the same set and charts objective against evaluations and wall time.
 
+use crate::fit::bootstrap::bootstrap;
 use crate::fit::charts;
+use crate::fit::cross_validation::leave_one_group_out;
 use crate::fit::fit_set::FitSet;
 use crate::fit::objective::Block;
 use crate::fit::report::{table, write_files};
 use crate::fit::run::{run_fit, FitResult, Optimizer};
 use crate::fit::scatter::scatter;
+use crate::fit::study_report::{
+    bootstrap_table, cross_validation_table, write_bootstrap, write_cross_validation,
+};
 use anyhow::Result;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -35,6 +40,13 @@ pub struct Args {
     /// of the mean measured magnitude.
     #[arg(long)]
     pub validate: bool,
+    /// Bootstrap over records: this many resamples (records drawn with replacement within
+    /// each group), each refitted from the optimum; intervals, correlation, bands.
+    #[arg(long, value_name = "SAMPLES")]
+    pub bootstrap: Option<usize>,
+    /// Leave one group out: fit on the other groups, predict the one left out.
+    #[arg(long)]
+    pub cross_validate: bool,
 }
 
 /// Largest RMS error of a validated fit against a group's mean curve, as a fraction of
@@ -106,6 +118,23 @@ pub fn run(args: Args) -> Result<()> {
     print!("{}", table(&set, &result));
     write_files(&args.out, &set, &result)?;
     charts::fit_charts(&args.out, &set, &result)?;
+    if let Some(samples) = args.bootstrap {
+        let report = |b: usize| {
+            eprint!("\r  bootstrap sample {}/{samples}   ", b + 1);
+            let _ = std::io::stderr().flush();
+        };
+        let b = bootstrap(&set, &result.material, samples, &report)?;
+        eprintln!();
+        print!("{}", bootstrap_table(&b));
+        write_bootstrap(&args.out, &set, &b)?;
+        charts::scatter_charts(&args.out, &set, &result.predictions, Some(&b))?;
+    }
+    if args.cross_validate {
+        let report = |k: usize, g: &str| eprintln!("  fold {}: without {g}", k + 1);
+        let folds = leave_one_group_out(&set, &result.material, &report)?;
+        print!("{}", cross_validation_table(&set, &folds));
+        write_cross_validation(&args.out, &set, &folds)?;
+    }
     if args.compare {
         let mut runs = Vec::new();
         for opt in [

@@ -3,6 +3,7 @@
 //! every stage, and the optimizer comparison (log10 S against evaluations and wall time).
 //! Line charts use `crate::chart`; the correlation matrix is a plotters heat map.
 
+use super::bootstrap::Bootstrap;
 use super::fit_set::FitSet;
 use super::objective::Block;
 use super::report::sanitize;
@@ -59,7 +60,7 @@ pub fn fit_charts(dir: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
         fit.write_png(&dir.join(format!("{stem}_fit.png")))?;
         res.write_png(&dir.join(format!("{stem}_residual.png")))?;
     }
-    scatter_charts(dir, set, &result.predictions)?;
+    scatter_charts(dir, set, &result.predictions, None)?;
     if result.stages.is_empty() {
         return Ok(());
     }
@@ -94,16 +95,23 @@ pub fn fit_charts(dir: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
     Ok(())
 }
 
-/// Per group of several records: the mean measured curve, its ±1 sd band and the mean of
-/// the model's predictions (`fit::scatter`).
-pub fn scatter_charts(dir: &Path, set: &FitSet, predictions: &[Vec<f64>]) -> Result<()> {
+/// Per group of several records (`group_<label>_scatter.png`): the mean measured curve,
+/// its ±1 sd band over the records and the mean of the model's predictions (`fit::scatter`),
+/// with the bootstrap's 95 % band of the latter when there is one.
+pub fn scatter_charts(
+    dir: &Path,
+    set: &FitSet,
+    predictions: &[Vec<f64>],
+    bootstrap: Option<&Bootstrap>,
+) -> Result<()> {
     let blocks: Vec<&Block> = set.blocks.iter().collect();
     for g in scatter(&blocks, predictions) {
         if g.strain.is_empty() {
             continue;
         }
         let b = blocks[g.group.members[0]];
-        let band = |sign: f64| -> Vec<f64> {
+        let y = |label: &str, v: &[f64]| Series::scaled(label, &g.strain, v, 1.0, b.y_chart_scale);
+        let sd = |sign: f64| -> Vec<f64> {
             g.mean
                 .iter()
                 .zip(&g.sd)
@@ -111,40 +119,23 @@ pub fn scatter_charts(dir: &Path, set: &FitSet, predictions: &[Vec<f64>]) -> Res
                 .collect()
         };
         let n = g.group.members.len();
-        LineChart::new(
+        let mut chart = LineChart::new(
             format!("{}: {n} records, mean and ±1 sd, model", g.group.label),
             &b.x_label,
             &b.y_label,
         )
-        .with(Series::scaled(
-            "measured mean",
-            &g.strain,
-            &g.mean,
-            1.0,
-            b.y_chart_scale,
-        ))
-        .with(Series::scaled(
-            "mean + sd",
-            &g.strain,
-            &band(1.0),
-            1.0,
-            b.y_chart_scale,
-        ))
-        .with(Series::scaled(
-            "mean - sd",
-            &g.strain,
-            &band(-1.0),
-            1.0,
-            b.y_chart_scale,
-        ))
-        .with(Series::scaled(
-            "model (mean over records)",
-            &g.strain,
-            &g.model_mean,
-            1.0,
-            b.y_chart_scale,
-        ))
-        .write_png(&dir.join(format!("group_{}_scatter.png", sanitize(&g.group.label))))?;
+        .with(y("measured mean", &g.mean))
+        .with(y("measured mean + sd", &sd(1.0)))
+        .with(y("measured mean - sd", &sd(-1.0)))
+        .with(y("model (mean over the records)", &g.model_mean));
+        let band =
+            bootstrap.and_then(|bs| bs.bands.iter().find(|band| band.group == g.group.label));
+        if let Some(band) = band {
+            chart = chart
+                .with(y("model, bootstrap 2.5 %", &band.lo95))
+                .with(y("model, bootstrap 97.5 %", &band.hi95));
+        }
+        chart.write_png(&dir.join(format!("group_{}_scatter.png", sanitize(&g.group.label))))?;
     }
     Ok(())
 }

@@ -6,7 +6,9 @@
 
 pub use verify::verify_cases;
 
+pub mod bootstrap;
 pub mod charts;
+pub mod cross_validation;
 pub mod fit_set;
 pub mod lm;
 pub mod model;
@@ -21,6 +23,7 @@ pub mod set_file;
 pub mod shpb_input;
 pub mod shpb_specimen;
 pub mod single_point;
+pub mod study_report;
 pub mod synth;
 pub mod tensile;
 pub mod trace;

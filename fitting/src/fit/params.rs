@@ -35,6 +35,17 @@ impl FreeParam {
         })
     }
 
+    /// This parameter started at `x`, moved just inside the bounds if it lies on or
+    /// outside them.
+    pub fn starting_at(&self, x: f64) -> FreeParam {
+        let span = self.upper - self.lower;
+        let start = x.clamp(self.lower + 1e-6 * span, self.upper - 1e-6 * span);
+        FreeParam {
+            start,
+            ..self.clone()
+        }
+    }
+
     /// x(u).
     pub fn to_bounded(&self, u: f64) -> f64 {
         match (self.lower.is_finite(), self.upper.is_finite()) {

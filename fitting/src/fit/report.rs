@@ -187,7 +187,7 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
 }
 
 /// Human units for a parameter value: MPa for stresses, plain otherwise.
-fn show(name: &str, v: f64) -> String {
+pub fn show(name: &str, v: f64) -> String {
     if name == "A" || name == "B" {
         format!("{:.2} MPa", v * 1e-6)
     } else {
@@ -217,10 +217,13 @@ pub fn table(set: &FitSet, result: &FitResult) -> String {
     for (i, s) in r.stages.iter().enumerate() {
         let _ = writeln!(
             out,
-            "\nStage {}: free {:?} on {:?}\n  {}; {} start(s), best {}; {} model evaluations + {} AD Jacobians; {} iterations; {:.2} s\n  termination: {} ({})\n  objective S = {:.6e} on {} samples",
+            "\nStage {}: free {:?} on {}\n  {}; {} start(s), best {}; {} model evaluations + {} AD Jacobians; {} iterations; {:.2} s\n  termination: {} ({})\n  objective S = {:.6e} on {} samples",
             i + 1,
             s.free,
-            s.experiments,
+            match s.experiments.len() {
+                n if n > 6 => format!("{n} experiments"),
+                _ => format!("{:?}", s.experiments),
+            },
             s.optimizer,
             s.starts,
             s.best_start + 1,

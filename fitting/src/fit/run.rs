@@ -10,7 +10,7 @@ use super::fit_set::FitSet;
 use super::lm::{levenberg_marquardt, LmOptions};
 use super::model::{with_values, Material};
 use super::nelder_mead::{nelder_mead, NmOptions};
-use super::objective::{predict, JacobianKind, Objective};
+use super::objective::{predict, Block, JacobianKind, Objective};
 use super::params::ParamSpace;
 use super::trace::{HistoryPoint, OptimResult};
 use anyhow::{bail, Result};
@@ -104,14 +104,12 @@ pub fn run_fit(
             .free
             .iter()
             .map(|&k| {
-                let mut p = set.params[k].clone();
+                let p = &set.params[k];
                 let seen = set.stages[..si].iter().any(|s| s.free.contains(&k));
-                if seen {
-                    let v = material.param(&p.name).unwrap();
-                    let span = p.upper - p.lower;
-                    p.start = v.clamp(p.lower + 1e-6 * span, p.upper - 1e-6 * span);
+                match seen {
+                    true => p.starting_at(material.param(&p.name).unwrap()),
+                    false => p.clone(),
                 }
-                p
             })
             .collect();
         let space = ParamSpace::new(params)?;
@@ -180,6 +178,50 @@ pub fn run_fit(
         material,
         predictions,
         wall_s: t0.elapsed().as_secs_f64(),
+    })
+}
+
+/// A refit on part of the data (a bootstrap resample, a cross-validation fold).
+#[derive(Debug, Clone)]
+pub struct Refit {
+    /// Bounded values of `set.params`, in order.
+    pub values: Vec<f64>,
+    pub converged: bool,
+    pub termination: String,
+}
+
+/// Fit every free parameter of `set` at once on `blocks` (which may repeat a block), one
+/// Levenberg-Marquardt run with the exact Jacobian from `start` (bounded values of
+/// `set.params`, or their stated starts when `None`); the other parameters as in `base`.
+pub fn refit(
+    set: &FitSet,
+    base: Material,
+    blocks: Vec<&Block>,
+    start: Option<&[f64]>,
+) -> Result<Refit> {
+    let params = match start {
+        Some(x) => set
+            .params
+            .iter()
+            .zip(x)
+            .map(|(p, &x)| p.starting_at(x))
+            .collect(),
+        None => set.params.clone(),
+    };
+    let space = ParamSpace::new(params)?;
+    let objective = Objective::new(base, blocks, space.clone())?;
+    let u0 = space.to_unbounded(&space.starts());
+    let run = levenberg_marquardt(
+        &objective,
+        &u0,
+        JacobianKind::Exact,
+        &LmOptions::default(),
+        &|_| {},
+    )?;
+    Ok(Refit {
+        values: space.to_bounded(&run.u),
+        converged: run.converged,
+        termination: run.termination,
     })
 }
 

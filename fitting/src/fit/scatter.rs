@@ -272,7 +272,7 @@ mod tests {
                 .map(|j| a + (b - a) * j as f64 / (n - 1) as f64)
                 .collect()
         };
-        let blocks = vec![
+        let blocks = [
             record(ks[0], strains(0.01, 0.30, 40), "g"),
             record(ks[1], strains(0.012, 0.25, 33), "g"),
             record(ks[2], strains(0.008, 0.28, 57), "g"),

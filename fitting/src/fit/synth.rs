@@ -71,7 +71,8 @@ pub struct SynthSpec<'a> {
     pub shpb_temperatures: &'a [f64],
 }
 
-fn gaussian(rng: &mut Pcg64) -> f64 {
+/// A standard normal deviate (Box-Muller) from `rng`.
+pub fn gaussian(rng: &mut Pcg64) -> f64 {
     let u1: f64 = rng.gen_range(f64::EPSILON..1.0);
     let u2: f64 = rng.gen();
     (-2.0 * u1.ln()).sqrt() * (2.0 * PI * u2).cos()
