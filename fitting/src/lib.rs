@@ -7,6 +7,7 @@
 pub mod chart;
 pub mod cli;
 pub mod experiment;
+pub mod export;
 pub mod heatmap;
 pub mod shpb;
 

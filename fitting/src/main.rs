@@ -25,6 +25,8 @@ enum Command {
     Shpb(fitting::cli::shpb::Args),
     /// Fit Johnson-Cook parameters to an experiment set (default: the synthetic 42CrMo4 set).
     Fit(fitting::cli::fit::Args),
+    /// Write a Johnson-Cook card for another code (Abaqus, JSON) in a stated unit system.
+    Export(fitting::cli::export::Args),
     /// Evaluate an experiment set with given parameters (fit report or material file), no optimizer.
     Predict(fitting::cli::predict::Args),
     /// Write a synthetic experiment set from a stated parameter set, noise level and seed.
@@ -43,6 +45,7 @@ fn main() {
         Command::Bench(a) => fitting::cli::bench::run(a),
         Command::Shpb(a) => fitting::cli::shpb::run(a),
         Command::Fit(a) => fitting::cli::fit::run(a),
+        Command::Export(a) => fitting::cli::export::run(a),
         Command::Predict(a) => fitting::cli::predict::run(a),
         Command::Synth(a) => fitting::cli::synth::run(a),
         Command::Simulate(a) => fitting::cli::simulate::run(a),

@@ -3,6 +3,7 @@
 pub mod bench;
 pub mod bench_mpm;
 pub mod drive;
+pub mod export;
 pub mod fit;
 pub mod predict;
 pub mod shpb;

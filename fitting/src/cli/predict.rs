@@ -8,13 +8,10 @@
 use crate::cli::fit::validate;
 use crate::fit::charts;
 use crate::fit::fit_set::FitSet;
-use crate::fit::model::{with_values, Material};
-use crate::fit::report::{table, write_files};
+use crate::fit::report::{read_parameters, table, write_files};
 use crate::fit::run::run_predict;
-use anyhow::{bail, Context, Result};
-use materials::material::Model;
-use materials::AnyModel;
-use std::path::{Path, PathBuf};
+use anyhow::Result;
+use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -32,51 +29,10 @@ pub struct Args {
     pub validate: bool,
 }
 
-/// The material of `file`: a fit report's `final_parameters` on `base`, or a material file.
-fn material_from(base: &Material, file: &Path) -> Result<Material> {
-    let text = std::fs::read_to_string(file)
-        .with_context(|| format!("{}: cannot read", file.display()))?;
-    let value: toml::Value =
-        toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))?;
-    let Some(list) = value.get("final_parameters") else {
-        return match materials::load_material(file)?.model {
-            AnyModel::ElastoPlastic(m) => Ok(m),
-            _ => bail!(
-                "{}: the material must be elasto-plastic (Johnson-Cook)",
-                file.display()
-            ),
-        };
-    };
-    let field = || format!("{}: field `final_parameters`", file.display());
-    let pairs = list
-        .as_array()
-        .with_context(|| format!("{}: expected an array of [name, value]", field()))?;
-    let mut names = Vec::new();
-    let mut values = Vec::new();
-    for pair in pairs {
-        let (Some(name), Some(v)) = (
-            pair.get(0).and_then(|n| n.as_str()),
-            pair.get(1).and_then(|v| v.as_float()),
-        ) else {
-            bail!("{}: expected [name, value], found {pair}", field());
-        };
-        if base.param(name).is_none() {
-            bail!(
-                "{}: unknown parameter `{name}`; known: {:?}",
-                field(),
-                base.param_names()
-            );
-        }
-        names.push(name);
-        values.push(v);
-    }
-    Ok(with_values(base, &names, &values))
-}
-
 pub fn run(args: Args) -> Result<()> {
     let set = FitSet::load(&args.set)?;
     let material = match &args.params {
-        Some(file) => material_from(&set.base, file)?,
+        Some(file) => read_parameters(&set.base, file)?,
         None => set.base,
     };
     let from = args.params.as_ref().map_or_else(

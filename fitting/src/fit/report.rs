@@ -5,11 +5,13 @@
 //! truth. Also the CSV of measured against fitted values per experiment.
 
 use super::fit_set::FitSet;
+use super::model::{with_values, Material};
 use super::objective::Block;
 use super::run::FitResult;
 use super::scatter::scatter;
-use anyhow::Result;
+use anyhow::{bail, Context, Result};
 use materials::material::Model;
+use materials::AnyModel;
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -172,7 +174,9 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
             }
         })
         .collect();
-    let final_parameters = ["A", "B", "N", "C", "M"]
+    let final_parameters = result
+        .material
+        .param_names()
         .iter()
         .filter_map(|n| result.material.param(n).map(|v| (n.to_string(), v)))
         .collect();
@@ -203,6 +207,7 @@ pub fn table(set: &FitSet, result: &FitResult) -> String {
         let values: Vec<String> = r
             .final_parameters
             .iter()
+            .filter(|(n, _)| ["A", "B", "N", "C", "M"].contains(&n.as_str()))
             .map(|(n, v)| format!("{n} = {}", show(n, *v)))
             .collect();
         let _ = writeln!(
@@ -316,6 +321,48 @@ pub fn table(set: &FitSet, result: &FitResult) -> String {
     }
     let _ = writeln!(out, "\nTotal wall time {:.2} s", r.total_wall_time_s);
     out
+}
+
+/// The material of `file`: a fit report's `final_parameters` applied to `base`, or a
+/// material file as it is.
+pub fn read_parameters(base: &Material, file: &Path) -> Result<Material> {
+    let text = std::fs::read_to_string(file)
+        .with_context(|| format!("{}: cannot read", file.display()))?;
+    let value: toml::Value =
+        toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))?;
+    let Some(list) = value.get("final_parameters") else {
+        return match materials::load_material(file)?.model {
+            AnyModel::ElastoPlastic(m) => Ok(m),
+            _ => bail!(
+                "{}: the material must be elasto-plastic (Johnson-Cook)",
+                file.display()
+            ),
+        };
+    };
+    let field = || format!("{}: field `final_parameters`", file.display());
+    let pairs = list
+        .as_array()
+        .with_context(|| format!("{}: expected an array of [name, value]", field()))?;
+    let mut names = Vec::new();
+    let mut values = Vec::new();
+    for pair in pairs {
+        let (Some(name), Some(v)) = (
+            pair.get(0).and_then(|n| n.as_str()),
+            pair.get(1).and_then(|v| v.as_float()),
+        ) else {
+            bail!("{}: expected [name, value], found {pair}", field());
+        };
+        if base.param(name).is_none() {
+            bail!(
+                "{}: unknown parameter `{name}`; known: {:?}",
+                field(),
+                base.param_names()
+            );
+        }
+        names.push(name);
+        values.push(v);
+    }
+    Ok(with_values(base, &names, &values))
 }
 
 /// Write `report.toml` and one `<experiment>.csv` (measured and fitted) into `dir`.

@@ -1,0 +1,222 @@
+//! Johnson-Cook parameter sets written for the codes that consume them: an Abaqus material
+//! block (`*PLASTIC, HARDENING=JOHNSON COOK` with `*RATE DEPENDENT, TYPE=JOHNSON COOK`) and
+//! a generic JSON card (every value with its unit), in a stated unit system.
+//!
+//! The model is the one of `materials::flow_stress` (eq. 4.52):
+//! σ_y = [A + B ε_p^N] [1 + C ln(ε̇_p/ε̇0)] [1 − θ*^M], θ* = (θ − θ0)/(θm − θ0), with the rate
+//! term 1 below ε̇0 and θ* clamped to [0, 1], which is Abaqus's form with the transition
+//! temperature θ0. mpw's yield stress is a Kirchhoff stress, the codes' a Cauchy stress:
+//! they differ by the elastic volume change J_e = 1 − p/K (0.6 % at 1 GPa of pressure in
+//! steel), which the card header says. Temperatures are in K in every unit system.
+//!
+//! No LS-DYNA `*MAT_JOHNSON_COOK` card yet: its failure and pressure-cutoff fields
+//! (D1-D5, PC, SPALL, EROD) decide whether elements erode, and their defaults could not be
+//! checked against the keyword manual here; a card that erodes at first yield would be a
+//! trap.
+
+use crate::fit::model::Material;
+use anyhow::{bail, Result};
+use materials::material::Model;
+use std::fmt::Write as _;
+
+/// A consistent unit system: factors from SI to it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Units {
+    pub name: &'static str,
+    /// Length, time, mass, force, stress, energy (for the header).
+    pub description: &'static str,
+    pub stress: f64,
+    pub density: f64,
+    pub rate: f64,
+    pub specific_heat: f64,
+    pub stress_unit: &'static str,
+    pub density_unit: &'static str,
+    pub rate_unit: &'static str,
+    pub specific_heat_unit: &'static str,
+}
+
+pub const UNIT_SYSTEMS: [Units; 3] = [
+    Units {
+        name: "si",
+        description: "m, s, kg, N, Pa, J, K",
+        stress: 1.0,
+        density: 1.0,
+        rate: 1.0,
+        specific_heat: 1.0,
+        stress_unit: "Pa",
+        density_unit: "kg/m^3",
+        rate_unit: "1/s",
+        specific_heat_unit: "J/(kg K)",
+    },
+    Units {
+        // 1 kg/m³ = 1e-3 t / 1e9 mm³; 1 J/(kg K) = 1e3 mJ / 1e-3 t.
+        name: "mm-s-tonne",
+        description: "mm, s, tonne, N, MPa, mJ, K",
+        stress: 1e-6,
+        density: 1e-12,
+        rate: 1.0,
+        specific_heat: 1e6,
+        stress_unit: "MPa",
+        density_unit: "t/mm^3",
+        rate_unit: "1/s",
+        specific_heat_unit: "mJ/(t K)",
+    },
+    Units {
+        // 1 kg/m³ = 1e-9 kg/mm³; kN·mm = J, so J/(kg K) is unchanged.
+        name: "mm-ms-kg",
+        description: "mm, ms, kg, kN, GPa, J, K",
+        stress: 1e-9,
+        density: 1e-9,
+        rate: 1e-3,
+        specific_heat: 1.0,
+        stress_unit: "GPa",
+        density_unit: "kg/mm^3",
+        rate_unit: "1/ms",
+        specific_heat_unit: "J/(kg K)",
+    },
+];
+
+/// The unit system named `name`.
+pub fn units(name: &str) -> Result<Units> {
+    match UNIT_SYSTEMS.iter().find(|u| u.name == name) {
+        Some(u) => Ok(*u),
+        None => {
+            let names: Vec<&str> = UNIT_SYSTEMS.iter().map(|u| u.name).collect();
+            bail!("unit system \"{name}\": expected one of {names:?}")
+        }
+    }
+}
+
+/// Each exported parameter: mpw name, how its SI value converts, label for the JSON card.
+#[derive(Clone, Copy)]
+enum Kind {
+    Stress,
+    Density,
+    Rate,
+    SpecificHeat,
+    Temperature,
+    Plain,
+}
+
+const FIELDS: [(&str, Kind); 14] = [
+    ("E", Kind::Stress),
+    ("nu", Kind::Plain),
+    ("rho", Kind::Density),
+    ("A", Kind::Stress),
+    ("B", Kind::Stress),
+    ("N", Kind::Plain),
+    ("C", Kind::Plain),
+    ("M", Kind::Plain),
+    ("alpha_dot0", Kind::Rate),
+    ("theta_m", Kind::Temperature),
+    ("theta0", Kind::Temperature),
+    ("c_theta", Kind::SpecificHeat),
+    ("alpha_sigma", Kind::Plain),
+    ("gamma_tq", Kind::Plain),
+];
+
+impl Units {
+    fn factor(&self, kind: Kind) -> (f64, &'static str) {
+        match kind {
+            Kind::Stress => (self.stress, self.stress_unit),
+            Kind::Density => (self.density, self.density_unit),
+            Kind::Rate => (self.rate, self.rate_unit),
+            Kind::SpecificHeat => (self.specific_heat, self.specific_heat_unit),
+            Kind::Temperature => (1.0, "K"),
+            Kind::Plain => (1.0, "1"),
+        }
+    }
+}
+
+/// The value of parameter `name` of `m` in `units`, and its unit.
+pub fn value(m: &Material, name: &str, units: &Units) -> Result<(f64, &'static str)> {
+    let Some(&(_, kind)) = FIELDS.iter().find(|(n, _)| *n == name) else {
+        bail!("`{name}` is not an exported parameter");
+    };
+    let Some(si) = m.param(name) else {
+        bail!("the material has no parameter `{name}` (a Johnson-Cook model is needed)");
+    };
+    let (factor, unit) = units.factor(kind);
+    Ok((si * factor, unit))
+}
+
+fn header(out: &mut String, comment: &str, source: &str, units: &Units) {
+    let _ = writeln!(
+        out,
+        "{comment} Johnson-Cook parameters of {source}, written by mpw {}",
+        env!("CARGO_PKG_VERSION")
+    );
+    let _ = writeln!(
+        out,
+        "{comment} units: {} ({}); temperatures in K",
+        units.description, units.name
+    );
+    let _ = writeln!(out, "{comment} yield stress: mpw fits a Kirchhoff stress, the code reads it as Cauchy (they differ by the elastic volume change, 0.6 % at 1 GPa pressure in steel)");
+}
+
+/// A number as it round-trips, always with a decimal point or an exponent (`193000.0`,
+/// `7.9e-9`).
+struct Num(f64);
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{:?}", self.0)
+    }
+}
+
+/// An Abaqus material block named `name`.
+pub fn abaqus(m: &Material, name: &str, source: &str, units: &Units) -> Result<String> {
+    let v = |n: &str| value(m, n, units).map(|(x, _)| Num(x));
+    let mut out = String::new();
+    header(&mut out, "**", source, units);
+    let _ = writeln!(out, "*MATERIAL, NAME={name}");
+    let _ = writeln!(out, "*DENSITY\n {},", v("rho")?);
+    let _ = writeln!(out, "*ELASTIC\n {}, {}", v("E")?, v("nu")?);
+    let _ = writeln!(
+        out,
+        "*EXPANSION, ZERO={}\n {},",
+        v("theta0")?,
+        v("alpha_sigma")?
+    );
+    let _ = writeln!(
+        out,
+        "*PLASTIC, HARDENING=JOHNSON COOK\n {}, {}, {}, {}, {}, {}",
+        v("A")?,
+        v("B")?,
+        v("N")?,
+        v("M")?,
+        v("theta_m")?,
+        v("theta0")?
+    );
+    let _ = writeln!(
+        out,
+        "*RATE DEPENDENT, TYPE=JOHNSON COOK\n {}, {}",
+        v("C")?,
+        v("alpha_dot0")?
+    );
+    let _ = writeln!(out, "*SPECIFIC HEAT\n {},", v("c_theta")?);
+    let _ = writeln!(out, "*INELASTIC HEAT FRACTION\n {},", v("gamma_tq")?);
+    Ok(out)
+}
+
+/// A generic JSON card: `{"parameters": {"A": {"value": .., "unit": ".."}, ..}, ..}`.
+pub fn json(m: &Material, name: &str, source: &str, units: &Units) -> Result<String> {
+    let quoted = |s: &str| format!("\"{}\"", s.replace('\\', "\\\\").replace('"', "\\\""));
+    let mut fields = Vec::new();
+    for (n, _) in FIELDS {
+        let (x, unit) = value(m, n, units)?;
+        let x = Num(x);
+        fields.push(format!(
+            "    {}: {{\"value\": {x}, \"unit\": {}}}",
+            quoted(n),
+            quoted(unit)
+        ));
+    }
+    Ok(format!(
+        "{{\n  \"model\": \"johnson-cook\",\n  \"form\": \"[A + B eps_p^N] [1 + C ln(rate/alpha_dot0)] [1 - T*^M], T* = (T - theta0)/(theta_m - theta0); rate term 1 below alpha_dot0, T* clamped to [0, 1]; Kirchhoff yield stress\",\n  \"name\": {},\n  \"source\": {},\n  \"units\": {},\n  \"parameters\": {{\n{}\n  }}\n}}\n",
+        quoted(name),
+        quoted(source),
+        quoted(units.description),
+        fields.join(",\n")
+    ))
+}

@@ -1,0 +1,147 @@
+//! Exported Johnson-Cook cards read back: every field of the Abaqus block and of the JSON
+//! card, converted back to SI, equals the material's value (to 1e-14 relative: one
+//! multiplication and one division by the unit factor), in every unit system.
+
+use fitting::export::{abaqus, json, UNIT_SYSTEMS};
+use fitting::fit::model::Material;
+use materials::material::Model;
+use std::path::Path;
+
+fn material(file: &str) -> Material {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/materials");
+    materials::studies::elasto_plastic(&dir, file).unwrap()
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-14 * b.abs()
+}
+
+/// The numbers on the data line after the keyword line that starts with `keyword`.
+fn data_line(card: &str, keyword: &str) -> Vec<f64> {
+    let mut lines = card.lines();
+    lines
+        .find(|l| l.starts_with(keyword))
+        .unwrap_or_else(|| panic!("no {keyword}"));
+    lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(str::trim)
+        .filter(|f| !f.is_empty())
+        .map(|f| f.parse().unwrap_or_else(|_| panic!("{keyword}: {f}")))
+        .collect()
+}
+
+#[test]
+fn abaqus_block_reads_back_in_every_unit_system() {
+    for file in ["ss304l.toml", "aisi_4340.toml", "ofhc_copper.toml"] {
+        let m = material(file);
+        let p = |n: &str| m.param(n).unwrap();
+        for u in UNIT_SYSTEMS {
+            let card = abaqus(&m, "X", file, &u).unwrap();
+            assert!(
+                card.contains(&format!("units: {}", u.description)),
+                "{card}"
+            );
+            let check = |keyword: &str, expected: &[f64]| {
+                let got = data_line(&card, keyword);
+                assert_eq!(got.len(), expected.len(), "{file} {} {keyword}", u.name);
+                for (g, e) in got.iter().zip(expected) {
+                    assert!(close(*g, *e), "{file} {} {keyword}: {g} vs {e}", u.name);
+                }
+            };
+            let s = u.stress;
+            check("*DENSITY", &[p("rho") * u.density]);
+            check("*ELASTIC", &[p("E") * s, p("nu")]);
+            check("*EXPANSION", &[p("alpha_sigma")]);
+            let plastic = [
+                p("A") * s,
+                p("B") * s,
+                p("N"),
+                p("M"),
+                p("theta_m"),
+                p("theta0"),
+            ];
+            check("*PLASTIC, HARDENING=JOHNSON COOK", &plastic);
+            check(
+                "*RATE DEPENDENT, TYPE=JOHNSON COOK",
+                &[p("C"), p("alpha_dot0") * u.rate],
+            );
+            check("*SPECIFIC HEAT", &[p("c_theta") * u.specific_heat]);
+            check("*INELASTIC HEAT FRACTION", &[p("gamma_tq")]);
+            assert!(card.contains(&format!("*EXPANSION, ZERO={:?}", p("theta0"))));
+        }
+    }
+}
+
+/// `"name": {"value": X, "unit": "U"}` of a JSON card.
+fn json_field(card: &str, name: &str) -> (f64, String) {
+    let at = card
+        .find(&format!("\"{name}\": {{"))
+        .unwrap_or_else(|| panic!("no {name}"));
+    let rest = &card[at..];
+    let value = rest
+        .split("\"value\": ")
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap();
+    let unit = rest
+        .split("\"unit\": \"")
+        .nth(1)
+        .unwrap()
+        .split('"')
+        .next()
+        .unwrap();
+    (value.trim().parse().unwrap(), unit.to_string())
+}
+
+#[test]
+fn json_card_reads_back_with_units() {
+    let m = material("ss304l.toml");
+    for u in UNIT_SYSTEMS {
+        let card = json(&m, "X", "test", &u).unwrap();
+        for (name, factor, unit) in [
+            ("E", u.stress, u.stress_unit),
+            ("A", u.stress, u.stress_unit),
+            ("B", u.stress, u.stress_unit),
+            ("rho", u.density, u.density_unit),
+            ("alpha_dot0", u.rate, u.rate_unit),
+            ("c_theta", u.specific_heat, u.specific_heat_unit),
+            ("theta_m", 1.0, "K"),
+            ("N", 1.0, "1"),
+            ("C", 1.0, "1"),
+            ("M", 1.0, "1"),
+            ("gamma_tq", 1.0, "1"),
+        ] {
+            let (v, got_unit) = json_field(&card, name);
+            let expected = m.param(name).unwrap() * factor;
+            assert!(close(v, expected), "{} {name}: {v} vs {expected}", u.name);
+            assert_eq!(got_unit, unit, "{} {name}", u.name);
+        }
+    }
+}
+
+#[test]
+fn known_values_in_the_mm_unit_systems() {
+    // Hand conversion of the 304L file: E 193 GPa = 193000 MPa, ρ 7900 kg/m³ =
+    // 7.9e-9 t/mm³, c 500 J/(kg K) = 5e8 mJ/(t K).
+    let m = material("ss304l.toml");
+    let u = fitting::export::units("mm-s-tonne").unwrap();
+    let card = abaqus(&m, "SS304L", "test", &u).unwrap();
+    assert_eq!(data_line(&card, "*ELASTIC"), [193000.0, 0.29]);
+    assert!(close(data_line(&card, "*DENSITY")[0], 7.9e-9));
+    assert!(close(data_line(&card, "*SPECIFIC HEAT")[0], 5e8));
+    // mm-ms-kg: E = 193 GPa, ρ = 7.9e-6 kg/mm³, α̇0 = 1e-4 1/s = 1e-7 1/ms, c unchanged.
+    let u = fitting::export::units("mm-ms-kg").unwrap();
+    let card = abaqus(&m, "SS304L", "test", &u).unwrap();
+    assert!(close(data_line(&card, "*ELASTIC")[0], 193.0));
+    assert!(close(data_line(&card, "*DENSITY")[0], 7.9e-6));
+    assert!(close(
+        data_line(&card, "*RATE DEPENDENT, TYPE=JOHNSON COOK")[1],
+        1e-7
+    ));
+    assert!(close(data_line(&card, "*SPECIFIC HEAT")[0], 500.0));
+    assert!(fitting::export::units("inch").is_err());
+}
