@@ -10,6 +10,7 @@ pub mod bootstrap;
 pub mod charts;
 pub mod cross_validation;
 pub mod fit_set;
+pub mod identifiability;
 pub mod lm;
 pub mod model;
 pub mod nelder_mead;

@@ -5,6 +5,7 @@
 //! truth. Also the CSV of measured against fitted values per experiment.
 
 use super::fit_set::FitSet;
+use super::identifiability;
 use super::model::{with_values, Material};
 use super::objective::Block;
 use super::run::FitResult;
@@ -32,6 +33,8 @@ struct StageRow {
     optimizer: String,
     parameters: Vec<ParamRow>,
     correlation: Vec<Vec<f64>>,
+    /// Parameter pairs the data do not identify separately (`fit::identifiability`).
+    not_identified: Vec<String>,
     objective: f64,
     samples: usize,
     starts: usize,
@@ -161,6 +164,7 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
                     })
                     .collect(),
                 correlation: s.correlation.clone(),
+                not_identified: identifiability::warnings(&s.free, &s.correlation),
                 objective: s.cost,
                 samples: s.samples,
                 starts: s.runs.len(),
@@ -197,6 +201,40 @@ pub fn show(name: &str, v: f64) -> String {
     } else {
         format!("{v:.5}")
     }
+}
+
+/// One line: convergence, the worst group against its mean curve, and what the data do not
+/// identify.
+fn summary(r: &ReportFile) -> String {
+    let worst = r.groups.iter().max_by(|a, b| {
+        a.rms_vs_mean_curve_percent
+            .total_cmp(&b.rms_vs_mean_curve_percent)
+    });
+    let mut parts = Vec::new();
+    if !r.stages.is_empty() {
+        let all = r.stages.iter().all(|s| s.converged);
+        parts.push(if all {
+            "converged".to_string()
+        } else {
+            "NOT converged".to_string()
+        });
+    }
+    if let Some(g) = worst {
+        parts.push(format!(
+            "worst group {} at {:.2} % RMS against its mean curve",
+            g.group, g.rms_vs_mean_curve_percent
+        ));
+    }
+    let pairs: Vec<&String> = r.stages.iter().flat_map(|s| &s.not_identified).collect();
+    match pairs.is_empty() {
+        true if !r.stages.is_empty() => parts.push(format!(
+            "every parameter pair identified (|r| < {})",
+            identifiability::LIMIT
+        )),
+        true => {}
+        false => parts.extend(pairs.iter().map(|p| format!("WARNING: {p}"))),
+    }
+    format!("Summary: {}", parts.join("; "))
 }
 
 /// The terminal table.
@@ -319,7 +357,8 @@ pub fn table(set: &FitSet, result: &FitResult) -> String {
             }
         }
     }
-    let _ = writeln!(out, "\nTotal wall time {:.2} s", r.total_wall_time_s);
+    let _ = writeln!(out, "\n{}", summary(&r));
+    let _ = writeln!(out, "Total wall time {:.2} s", r.total_wall_time_s);
     out
 }
 
