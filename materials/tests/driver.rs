@@ -3,6 +3,7 @@
 
 use materials::driver::{self, Control, LoadPath, Ramp, Temperature};
 use materials::{load_material, AnyModel, NeoHooke};
+use std::path::Path;
 
 /// Lateral stretch of Neo-Hooke uniaxial stress at axial stretch `l`:
 /// σ_yy = 0 ⇔ Λ ln(l t²) + G (t² − 1) = 0, solved by bisection (independent of the
@@ -93,4 +94,25 @@ fn unreachable_stress_is_an_error_with_step_and_time() {
     path.controls[0][0] = Control::Stress(Ramp::new(times, target).unwrap());
     let err = driver::run(&m, &path).unwrap_err().to_string();
     assert!(err.starts_with("step 5 (t = 5e-1 s)"), "got: {err}");
+}
+
+#[test]
+fn a_held_temperature_stays_held_under_plastic_work() {
+    // 42CrMo4 has γ_TQ = 0.9: shear to γ = 1 turns about 1 GJ/m³ of plastic work into
+    // heat, which raised the recorded θ by about 1 K per step before the driver reset it
+    // only at the start of the next step.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/materials/42crmo4_qt660.toml");
+    let m = match load_material(&path).unwrap().model {
+        AnyModel::ElastoPlastic(m) => m,
+        _ => unreachable!(),
+    };
+    assert!(m.thermal.gamma_tq > 0.0);
+    let held = 293.15;
+    let path = LoadPath::simple_shear(1.0, 1e3, 300, Temperature::Prescribed(Ramp::constant(held)))
+        .unwrap();
+    let records = driver::run(&m, &path).unwrap();
+    assert!(records.last().unwrap().state.alpha > 0.5, "plastic");
+    for r in &records {
+        assert_eq!(r.state.theta, held, "t = {}", r.time);
+    }
 }

@@ -175,8 +175,27 @@ fn stress_strain_chart(name: &str, args: &Args, records: &[driver::Record]) -> R
     )))
 }
 
+/// Refuse a fixed temperature the model cannot take (at or below 0 K, at or above θm), and
+/// say when `--adiabatic` cannot heat (γ_TQ = 0).
+fn check_temperature(args: &Args, model: &materials::AnyModel) -> Result<()> {
+    let file = args.material.display();
+    if let Some(theta) = args.temperature {
+        if !(theta > 0.0) {
+            bail!("--temperature {theta}: an absolute temperature in K must be above 0 K");
+        }
+        if let Some(theta_m) = model.param("theta_m").filter(|&tm| theta >= tm) {
+            bail!("--temperature {theta} K is at or above the melting temperature θm = {theta_m} K of {file}: the Johnson-Cook flow stress is zero there");
+        }
+    }
+    if args.adiabatic && model.param("gamma_tq") == Some(0.0) {
+        eprintln!("warning: --adiabatic with gamma_tq = 0 in {file}: no plastic work turns into heat, the temperature stays at θ0");
+    }
+    Ok(())
+}
+
 pub fn run(args: Args) -> Result<()> {
     let material = load_material(&args.material)?;
+    check_temperature(&args, &material.model)?;
     let path = build_path(&args, material.model.initial_state().theta)?;
     let records = driver::run(&material.model, &path)?;
     std::fs::create_dir_all(&args.out)

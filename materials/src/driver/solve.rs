@@ -14,7 +14,8 @@ use thiserror::Error;
 pub enum DriverError {
     #[error("load path: {0}")]
     Path(String),
-    #[error("step {step} (t = {time:e} s): material update failed: {source}")]
+    /// The material's own error is the source (printed after this message by `{:#}`).
+    #[error("step {step} (t = {time:e} s): material update failed")]
     Material {
         step: usize,
         time: f64,
@@ -188,6 +189,8 @@ pub fn run<D: Scalar, M: Model<D>>(
         }
         let (sigma, new_state) = model.update(&f_d, dt, &state).map_err(material)?;
         state = new_state;
+        // A held temperature stays held: the plastic heating of the step is taken away.
+        set_temperature(&mut state, t);
         records.push(Record {
             time: t,
             f: f_d,
