@@ -1,6 +1,7 @@
 //! `mpw synth`: write a synthetic experiment set (quasi-static tension + SHPB at room and
 //! elevated temperature) from a stated parameter set, noise level and seed; the truth is
-//! in every file header. Defaults reproduce the shipped `data/experiments/`.
+//! in every file header. The defaults write the shipped `data/experiments/` set again,
+//! into `out/synth` (the shipped files are only rewritten when `--out` names them).
 
 use crate::fit::synth::{write_set, SynthSpec};
 use anyhow::{bail, Result};
@@ -12,8 +13,9 @@ pub struct Args {
     /// Material parameter file with the true parameters.
     #[arg(long, default_value = "data/materials/42crmo4_qt660.toml")]
     pub material: PathBuf,
-    /// Output folder (experiments and the `default.toml` set).
-    #[arg(long, default_value = "data/experiments")]
+    /// Output folder (experiments and the `default.toml` set); `--out data/experiments`
+    /// regenerates the shipped set.
+    #[arg(long, default_value = "out/synth")]
     pub out: PathBuf,
     /// Noise standard deviation as a fraction of each channel's peak.
     #[arg(long, default_value_t = 0.01)]
