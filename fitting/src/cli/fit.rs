@@ -47,6 +47,33 @@ pub struct Args {
     /// Leave one group out: fit on the other groups, predict the one left out.
     #[arg(long)]
     pub cross_validate: bool,
+    /// Exit 0 even when a group's RMS against its mean curve exceeds 50 % (a poor fit,
+    /// usually a unit mistake).
+    #[arg(long)]
+    pub allow_poor_fit: bool,
+}
+
+/// RMS against a group's mean curve above which a fit is poor: no parameter set of the
+/// model describes the data, which usually means a unit or column mistake.
+pub const POOR_FIT_RMS: f64 = 0.5;
+
+/// Fail if a group of `result` is fitted worse than `POOR_FIT_RMS`, naming the likely causes.
+fn refuse_poor_fit(file: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
+    let blocks: Vec<&Block> = set.blocks.iter().collect();
+    let poor: Vec<String> = scatter(&blocks, &result.predictions)
+        .iter()
+        .filter(|g| !(g.rms_vs_mean <= POOR_FIT_RMS))
+        .map(|g| format!("{} ({:.0} %)", g.group.label, 100.0 * g.rms_vs_mean))
+        .collect();
+    if poor.is_empty() {
+        return Ok(());
+    }
+    anyhow::bail!(
+        "{}: poor fit: RMS against the mean measured curve above {:.0} % for {}. Check the column units first (a strain in % declared as \"1\" or the reverse, a stress in Pa declared as MPa), then the window and the model level. The report is written; --allow-poor-fit exits 0",
+        file.display(),
+        100.0 * POOR_FIT_RMS,
+        poor.join(", ")
+    )
 }
 
 /// Largest RMS error of a validated fit against a group's mean curve, as a fraction of
@@ -118,6 +145,9 @@ pub fn run(args: Args) -> Result<()> {
     print!("{}", table(&set, &result));
     write_files(&args.out, &set, &result)?;
     charts::fit_charts(&args.out, &set, &result)?;
+    if !args.allow_poor_fit {
+        refuse_poor_fit(&args.set, &set, &result)?;
+    }
     if let Some(samples) = args.bootstrap {
         let report = |b: usize| {
             eprint!("\r  bootstrap sample {}/{samples}   ", b + 1);
