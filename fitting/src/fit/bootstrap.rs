@@ -118,19 +118,51 @@ pub fn bootstrap(
         values.len() >= 2,
         "bootstrap: fewer than two refits succeeded"
     );
-    let objective = Objective::new(
-        *material,
-        blocks.clone(),
-        ParamSpace::new(
-            set.params
-                .iter()
-                .zip(&optimum)
-                .map(|(p, &x)| p.starting_at(x))
-                .collect(),
-        )?,
-    )?;
-    let u = objective.space.to_unbounded(&optimum);
-    let (jtj, _) = statistics(&objective, &u)?;
+    let jtj = jtj_std_errors(set, material, &blocks, &optimum)?;
+    let (params, correlation) = intervals(&names, &optimum, &jtj, &values);
+    let bands = grids
+        .iter()
+        .enumerate()
+        .filter(|(_, g)| !g.strain.is_empty())
+        .map(|(k, g)| band(&g.group.label, &g.strain, curves.iter().map(|c| &c[k][..])))
+        .collect();
+    Ok(Bootstrap {
+        samples: values.len(),
+        not_converged,
+        failed,
+        params,
+        correlation,
+        bands,
+        wall_s: t0.elapsed().as_secs_f64(),
+    })
+}
+
+/// The JᵀJ standard errors of `set.params` at `optimum` on all of `blocks`.
+fn jtj_std_errors(
+    set: &FitSet,
+    material: &Material,
+    blocks: &[&Block],
+    optimum: &[f64],
+) -> Result<Vec<f64>> {
+    let params = set
+        .params
+        .iter()
+        .zip(optimum)
+        .map(|(p, &x)| p.starting_at(x));
+    let space = ParamSpace::new(params.collect())?;
+    let u = space.to_unbounded(&space.starts());
+    let objective = Objective::new(*material, blocks.to_vec(), space)?;
+    Ok(statistics(&objective, &u)?.0)
+}
+
+/// Per parameter the bootstrap distribution of `values` (one row per sample) beside its
+/// JᵀJ error, and the correlation matrix of the samples.
+fn intervals(
+    names: &[&str],
+    optimum: &[f64],
+    jtj: &[f64],
+    values: &[Vec<f64>],
+) -> (Vec<ParamInterval>, Vec<Vec<f64>>) {
     let n = values.len() as f64;
     let column = |k: usize| -> Vec<f64> { values.iter().map(|v| v[k]).collect() };
     let mean: Vec<f64> = (0..names.len())
@@ -165,33 +197,22 @@ pub fn bootstrap(
                 .collect()
         })
         .collect();
-    let bands = grids
-        .iter()
-        .enumerate()
-        .filter(|(_, g)| !g.strain.is_empty())
-        .map(|(k, g)| {
-            let at = |j: usize, q: f64| {
-                let mut v: Vec<f64> = curves.iter().map(|c| c[k][j]).collect();
-                v.sort_by(f64::total_cmp);
-                percentile(&v, q)
-            };
-            Band {
-                group: g.group.label.clone(),
-                strain: g.strain.clone(),
-                lo95: (0..g.strain.len()).map(|j| at(j, 0.025)).collect(),
-                hi95: (0..g.strain.len()).map(|j| at(j, 0.975)).collect(),
-            }
-        })
-        .collect();
-    Ok(Bootstrap {
-        samples: values.len(),
-        not_converged,
-        failed,
-        params,
-        correlation,
-        bands,
-        wall_s: t0.elapsed().as_secs_f64(),
-    })
+    (params, correlation)
+}
+
+/// The 2.5 / 97.5 % band of a group's model mean curves (one per sample) on `strain`.
+fn band<'a>(group: &str, strain: &[f64], curves: impl Iterator<Item = &'a [f64]> + Clone) -> Band {
+    let at = |j: usize, q: f64| {
+        let mut v: Vec<f64> = curves.clone().map(|c| c[j]).collect();
+        v.sort_by(f64::total_cmp);
+        percentile(&v, q)
+    };
+    Band {
+        group: group.to_string(),
+        strain: strain.to_vec(),
+        lo95: (0..strain.len()).map(|j| at(j, 0.025)).collect(),
+        hi95: (0..strain.len()).map(|j| at(j, 0.975)).collect(),
+    }
 }
 
 #[cfg(test)]
