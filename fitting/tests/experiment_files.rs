@@ -525,3 +525,18 @@ fn missing_and_bad_header_metadata_name_the_file_line_and_keys() {
         .to_string();
     assert!(msg.contains("g.toml:3:8: `data`: no file matches"), "{msg}");
 }
+
+#[test]
+fn a_file_of_the_other_kind_is_named_as_such() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/experiments");
+    let e = ShpbExperiment::load(&root.join("qs_tension.toml")).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::WrongKind { found, .. } if found == "tensile"),
+        "{e}"
+    );
+    let e = TensileExperiment::load(&root.join("shpb_293K.toml")).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::WrongKind { found, .. } if found == "shpb"),
+        "{e}"
+    );
+}

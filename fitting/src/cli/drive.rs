@@ -30,11 +30,13 @@ pub struct Args {
     /// Material parameter file.
     #[arg(long, default_value = "data/materials/42crmo4_qt660.toml")]
     pub material: PathBuf,
+    /// Load path.
     #[arg(long, value_enum, default_value_t = PathKind::Tension)]
     pub path: PathKind,
     /// Strain rate [1/s] (shear: γ̇).
     #[arg(long, default_value_t = 1e-3)]
     pub rate: f64,
+    /// Whether --rate and --strain are true (logarithmic) or engineering measures.
     #[arg(long, value_enum, default_value_t = RateArg::True)]
     pub rate_kind: RateArg,
     /// End strain magnitude (true or engineering as --rate-kind; shear: γ).
@@ -43,6 +45,7 @@ pub struct Args {
     /// Hold at the end strain [s].
     #[arg(long, default_value_t = 0.0)]
     pub hold: f64,
+    /// Driver steps of the loading ramp (a hold continues with the same step size).
     #[arg(long, default_value_t = 300)]
     pub steps: usize,
     /// Fixed temperature [K] (default: the material's reference temperature θ0).
@@ -57,6 +60,7 @@ pub struct Args {
     /// Initial specimen diameter [m] for `--path shpb`: adds the force F = σ A0 L0/L.
     #[arg(long, default_value_t = 8e-3)]
     pub specimen_diameter: f64,
+    /// Output folder for drive.csv and drive.png.
     #[arg(long, default_value = "out/drive")]
     pub out: PathBuf,
 }

@@ -36,6 +36,8 @@ use toml::Spanned;
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ShpbFile {
+    /// Checked by `Sidecar::parse_kind` before this type is parsed.
+    #[allow(dead_code)]
     kind: Spanned<String>,
     name: Option<String>,
     data: Spanned<String>,
@@ -148,8 +150,7 @@ impl ShpbExperiment {
     /// Read an SHPB experiment TOML and the CSV it names.
     pub fn load(toml_file: &Path) -> Result<ShpbExperiment, ExperimentError> {
         let sidecar = Sidecar::read(toml_file)?;
-        let spec: ShpbFile = sidecar.parse()?;
-        sidecar.expect_kind(&spec.kind, "shpb")?;
+        let spec: ShpbFile = sidecar.parse_kind("shpb")?;
         let temperature_k =
             sidecar.positive("temperature", &spec.temperature, Dimension::Temperature)?;
         let b = &spec.bar;

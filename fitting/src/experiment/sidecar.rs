@@ -55,6 +55,14 @@ impl Sidecar {
         })
     }
 
+    /// The file parsed as `T` after checking that its `kind` is `expected` (so that a file
+    /// of another kind is reported as such, not as an unknown key).
+    pub fn parse_kind<T: DeserializeOwned>(&self, expected: &str) -> Result<T, ExperimentError> {
+        let kind: KindOnly = self.parse()?;
+        self.expect_kind(&kind.kind, expected)?;
+        self.parse()
+    }
+
     /// The file's `kind` key must be `expected` ("tensile", "shpb").
     pub fn expect_kind(
         &self,

@@ -45,6 +45,8 @@ use toml::Spanned;
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct TensileFile {
+    /// Checked by `Sidecar::parse_kind` before this type is parsed.
+    #[allow(dead_code)]
     kind: Spanned<String>,
     name: Option<String>,
     data: Spanned<String>,
@@ -129,8 +131,7 @@ impl TensileExperiment {
     /// folder or pattern, sorted by name).
     pub fn load_all(toml_file: &Path) -> Result<Vec<TensileExperiment>, ExperimentError> {
         let sidecar = Sidecar::read(toml_file)?;
-        let spec: TensileFile = sidecar.parse()?;
-        sidecar.expect_kind(&spec.kind, "tensile")?;
+        let spec: TensileFile = sidecar.parse_kind("tensile")?;
         let geometry = Geometry::read(&sidecar, spec.geometry.as_ref())?;
         let data = sidecar.relative_path(spec.data.get_ref());
         let name = spec.name.clone().unwrap_or_else(|| {
