@@ -3,6 +3,7 @@
 //! `--compare` also runs Nelder-Mead, LM with the exact Jacobian and LM with finite
 //! differences on the same set and charts objective against evaluations and wall time.
 
+use crate::cli::progress::ProgressLine;
 use crate::fit::bootstrap::bootstrap;
 use crate::fit::charts;
 use crate::fit::cross_validation::leave_one_group_out;
@@ -14,8 +15,8 @@ use crate::fit::scatter::scatter;
 use crate::fit::study_report::{
     bootstrap_table, cross_validation_table, write_bootstrap, write_cross_validation,
 };
+use crate::fit::trace::HistoryPoint;
 use anyhow::Result;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
@@ -116,17 +117,24 @@ pub fn validate(file: &Path, set: &FitSet, result: &FitResult, stages: bool) -> 
     Ok(())
 }
 
-fn progress(stage: usize, start: usize, p: &crate::fit::trace::HistoryPoint) {
-    eprint!(
-        "\r  stage {} start {}: {:>5} evaluations, {:>4} Jacobians, {:>7.2} s, S = {:.6e}   ",
-        stage + 1,
-        start + 1,
-        p.evaluations,
-        p.jacobians,
-        p.wall_s,
-        p.cost
-    );
-    let _ = std::io::stderr().flush();
+/// Fit a set with progress per stage and start on standard error.
+fn fit_with_progress(set: &FitSet, optimizer: Optimizer) -> Result<FitResult> {
+    let line = ProgressLine::default();
+    let progress = |stage: usize, start: usize, p: &HistoryPoint| {
+        let text = format!(
+            "  stage {} start {}: {:>5} evaluations, {:>4} Jacobians, {:>7.2} s, S = {:.6e}",
+            stage + 1,
+            start + 1,
+            p.evaluations,
+            p.jacobians,
+            p.wall_s,
+            p.cost
+        );
+        line.show(&format!("{stage}/{start}"), &text);
+    };
+    let result = run_fit(set, optimizer, &progress);
+    line.finish();
+    result
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -140,8 +148,7 @@ pub fn run(args: Args) -> Result<()> {
         args.set.display(),
         set.blocks.len()
     );
-    let result = run_fit(&set, optimizer, &progress)?;
-    eprintln!();
+    let result = fit_with_progress(&set, optimizer)?;
     print!("{}", table(&set, &result));
     write_files(&args.out, &set, &result)?;
     charts::fit_charts(&args.out, &set, &result)?;
@@ -149,12 +156,14 @@ pub fn run(args: Args) -> Result<()> {
         refuse_poor_fit(&args.set, &set, &result)?;
     }
     if let Some(samples) = args.bootstrap {
+        let line = ProgressLine::default();
         let report = |b: usize| {
-            eprint!("\r  bootstrap sample {}/{samples}   ", b + 1);
-            let _ = std::io::stderr().flush();
+            let text = format!("  bootstrap sample {}/{samples}", b + 1);
+            line.show(&(10 * b / samples).to_string(), &text);
         };
-        let b = bootstrap(&set, &result.material, samples, &report)?;
-        eprintln!();
+        let b = bootstrap(&set, &result.material, samples, &report);
+        line.finish();
+        let b = b?;
         print!("{}", bootstrap_table(&b));
         write_bootstrap(&args.out, &set, &b)?;
         charts::scatter_charts(&args.out, &set, &result.predictions, Some(&b))?;
@@ -175,8 +184,7 @@ pub fn run(args: Args) -> Result<()> {
             eprintln!("comparison: {opt:?}");
             let mut single = FitSet::load(&args.set)?;
             single.starts = 1;
-            let r = run_fit(&single, opt, &progress)?;
-            eprintln!();
+            let r = fit_with_progress(&single, opt)?;
             runs.push(r);
         }
         let summary = charts::comparison(&args.out, &runs)?;

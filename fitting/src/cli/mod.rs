@@ -6,6 +6,7 @@ pub mod drive;
 pub mod export;
 pub mod fit;
 pub mod predict;
+pub mod progress;
 pub mod shpb;
 pub mod simulate;
 pub mod synth;
