@@ -1,6 +1,7 @@
 //! `mpw predict`: a set evaluated with the parameters of a fit report reproduces the
 //! fit's predictions exactly; the set's own material gives other numbers; a set without
-//! free parameters is refused by `mpw fit` with a pointer to `mpw predict`.
+//! free parameters is refused by `mpw fit` with a pointer to `mpw predict`. Also: the
+//! fit's progress off a terminal is one line per stage and start.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -62,11 +63,15 @@ fn a_fit_report_predicts_what_the_fit_predicted() {
     let (fit, predicted, base) = (scratch("fit"), scratch("pred"), scratch("base"));
     let set = "data/experiments/default.toml";
     let out = mpw(&["fit", set, "--out", fit.to_str().unwrap()]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    // Off a terminal the progress is one line per stage and start, not carriage returns.
+    assert!(!err.contains('\r'), "{err:?}");
+    let lines = err
+        .lines()
+        .filter(|l| l.contains("stage 1 start 1:"))
+        .count();
+    assert_eq!(lines, 1, "{err}");
     let report = fit.join("report.toml");
     let out = mpw(&[
         "predict",
