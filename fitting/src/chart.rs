@@ -41,6 +41,8 @@ pub struct LineChart {
     pub x_label: String,
     pub y_label: String,
     pub series: Vec<Series>,
+    /// The x axis counts something (evaluations): ticks only at whole numbers.
+    pub integer_x: bool,
 }
 
 const SIZE: (u32, u32) = (1000, 700);
@@ -56,7 +58,14 @@ impl LineChart {
             x_label: x_label.into(),
             y_label: y_label.into(),
             series: Vec::new(),
+            integer_x: false,
         }
+    }
+
+    /// Ticks of the x axis only at whole numbers.
+    pub fn integer_x(mut self) -> LineChart {
+        self.integer_x = true;
+        self
     }
 
     pub fn with(mut self, series: Series) -> LineChart {
@@ -100,9 +109,16 @@ impl LineChart {
             .x_label_area_size(50)
             .y_label_area_size(80)
             .build_cartesian_2d(x0..x1, y0..y1)?;
-        chart
-            .configure_mesh()
-            .x_desc(self.x_label.as_str())
+        let whole = |x: &f64| match (x - x.round()).abs() < 1e-9 {
+            true => format!("{x:.0}"),
+            false => String::new(),
+        };
+        let mut mesh = chart.configure_mesh();
+        if self.integer_x {
+            mesh.x_labels(((x1 - x0).floor() as usize + 1).clamp(2, 11))
+                .x_label_formatter(&whole);
+        }
+        mesh.x_desc(self.x_label.as_str())
             .y_desc(self.y_label.as_str())
             .label_style(("sans-serif", 16))
             .draw()?;

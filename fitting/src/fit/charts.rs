@@ -12,6 +12,7 @@ use super::scatter::scatter;
 use crate::chart::{LineChart, Series};
 use anyhow::Result;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -33,21 +34,20 @@ pub fn fit_charts(dir: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
         for (c, ch) in b.channels.iter().enumerate() {
             let range = c * per..(c + 1) * per;
             let x = &b.x[range.clone()];
+            // A single unnamed channel (tensile) reads "measured", not "measured measured".
+            let (measured, residual) = match ch.as_str() {
+                "measured" => ("measured".to_string(), "residual".to_string()),
+                _ => (format!("{ch} measured"), format!("{ch} residual")),
+            };
             fit = fit.with(Series::scaled(
-                format!("{ch} measured"),
+                measured,
                 x,
                 &b.measured[range.clone()],
                 1.0,
                 b.y_chart_scale,
             ));
             let r: Vec<f64> = range.clone().map(|k| p[k] - b.measured[k]).collect();
-            res = res.with(Series::scaled(
-                format!("{ch} residual"),
-                x,
-                &r,
-                1.0,
-                b.y_chart_scale,
-            ));
+            res = res.with(Series::scaled(residual, x, &r, 1.0, b.y_chart_scale));
         }
         fit = fit.with(Series::scaled(
             "model",
@@ -68,7 +68,8 @@ pub fn fit_charts(dir: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
         "convergence",
         "model evaluations (real + AD passes) [-]",
         "log10 objective S [-]",
-    );
+    )
+    .integer_x();
     for (si, s) in result.stages.iter().enumerate() {
         for (ri, run) in s.runs.iter().enumerate() {
             let pts: Vec<(f64, f64)> = run
@@ -140,45 +141,86 @@ pub fn scatter_charts(
     Ok(())
 }
 
+/// Diverging colour of a correlation r ∈ [−1, 1]: blue (−1), white (0), red (+1).
+fn correlation_colour(r: f64) -> RGBColor {
+    let v = if r.is_finite() {
+        r.clamp(-1.0, 1.0)
+    } else {
+        0.0
+    };
+    let fade = (255.0 * (1.0 - v.abs())) as u8;
+    match v >= 0.0 {
+        true => RGBColor(255, fade, fade),
+        false => RGBColor(fade, fade, 255),
+    }
+}
+
+/// The correlation matrix as a grid of cells in pixel coordinates: row k and column k are
+/// parameter k (rows top to bottom, columns left to right, labels at the cell centres), the
+/// value printed in every cell, and a colour bar from −1 to +1.
 fn correlation_png(path: &Path, names: &[String], corr: &[Vec<f64>]) -> Result<()> {
-    let n = names.len();
-    let root = BitMapBackend::new(path, (700, 640)).into_drawing_area();
+    let n = names.len() as i32;
+    let root = BitMapBackend::new(path, (760, 640)).into_drawing_area();
     root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption("parameter correlation (from JᵀJ)", ("sans-serif", 24))
-        .margin(20)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d(0..n, 0..n)?;
-    let label = |k: &usize| names.get(*k).cloned().unwrap_or_default();
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_labels(n)
-        .y_labels(n)
-        .x_label_formatter(&label)
-        .y_label_formatter(&label)
-        .draw()?;
+    let (x0, y0, size) = (90, 70, 480 / n);
+    let centred = |px: i32| {
+        ("sans-serif", px)
+            .into_font()
+            .color(&BLACK)
+            .pos(Pos::new(HPos::Center, VPos::Center))
+    };
+    root.draw(&Text::new(
+        "parameter correlation (from JᵀJ)",
+        (x0 + n * size / 2, 25),
+        centred(24),
+    ))?;
     for i in 0..n {
+        let name = &names[i as usize];
+        root.draw(&Text::new(
+            name.clone(),
+            (x0 - 30, y0 + i * size + size / 2),
+            centred(20),
+        ))?;
+        root.draw(&Text::new(
+            name.clone(),
+            (x0 + i * size + size / 2, y0 + n * size + 22),
+            centred(20),
+        ))?;
         for j in 0..n {
-            let c = corr[i][j];
-            let v = if c.is_finite() { c } else { 0.0 };
-            let color = if v >= 0.0 {
-                RGBColor(255, (255.0 * (1.0 - v)) as u8, (255.0 * (1.0 - v)) as u8)
-            } else {
-                RGBColor((255.0 * (1.0 + v)) as u8, (255.0 * (1.0 + v)) as u8, 255)
-            };
-            chart.draw_series(std::iter::once(Rectangle::new(
-                [(j, n - 1 - i), (j + 1, n - i)],
-                color.filled(),
-            )))?;
-            chart.draw_series(std::iter::once(Text::new(
-                format!("{c:.2}"),
-                (j, n - 1 - i),
-                ("sans-serif", 20).into_font(),
-            )))?;
+            let r = corr[i as usize][j as usize];
+            let (x, y) = (x0 + j * size, y0 + i * size);
+            root.draw(&Rectangle::new(
+                [(x, y), (x + size, y + size)],
+                correlation_colour(r).filled(),
+            ))?;
+            root.draw(&Rectangle::new(
+                [(x, y), (x + size, y + size)],
+                BLACK.stroke_width(1),
+            ))?;
+            root.draw(&Text::new(
+                format!("{r:.3}"),
+                (x + size / 2, y + size / 2),
+                centred(20),
+            ))?;
         }
     }
+    // Colour bar: +1 at the top, −1 at the bottom.
+    let (bx, height) = (x0 + n * size + 50, n * size);
+    for k in 0..height {
+        let r = 1.0 - 2.0 * f64::from(k) / f64::from(height - 1);
+        root.draw(&Rectangle::new(
+            [(bx, y0 + k), (bx + 24, y0 + k + 1)],
+            correlation_colour(r).filled(),
+        ))?;
+    }
+    root.draw(&Rectangle::new(
+        [(bx, y0), (bx + 24, y0 + height)],
+        BLACK.stroke_width(1),
+    ))?;
+    for (r, y) in [(1.0, y0), (0.0, y0 + height / 2), (-1.0, y0 + height)] {
+        root.draw(&Text::new(format!("{r:+.0}"), (bx + 48, y), centred(18)))?;
+    }
+    root.draw(&Text::new("r", (bx + 12, y0 - 18), centred(18)))?;
     root.present()?;
     Ok(())
 }
@@ -190,7 +232,8 @@ pub fn comparison(dir: &Path, runs: &[FitResult]) -> Result<String> {
         "optimizer comparison",
         "model evaluations (real + AD passes) [-]",
         "log10 objective S [-]",
-    );
+    )
+    .integer_x();
     let mut by_time = LineChart::new(
         "optimizer comparison",
         "wall time [s]",
