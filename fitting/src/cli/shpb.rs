@@ -159,7 +159,7 @@ fn summary(exp: &ShpbExperiment, a: &ShpbAnalysis) {
         q.strain_rate_1wave_per_s
     );
     println!(
-        "  plateau stress (3-wave, engineering) {:.1} MPa, mean equilibrium ratio R {:.3}",
+        "  plateau stress (3-wave, engineering) {:.1} MPa, mean equilibrium ratio R = 2|F1 − F2|/|F1 + F2| {:.3}",
         q.stress_3wave_pa / 1e6,
         q.equilibrium_ratio
     );

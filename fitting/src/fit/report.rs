@@ -340,6 +340,12 @@ pub fn table(set: &FitSet, result: &FitResult) -> String {
             e.name, e.rate_per_s, e.temperature_k, e.samples, rms, e.rms_percent_of_mean, ratio
         );
     }
+    if r.experiments.iter().any(|e| e.equilibrium_ratio.is_some()) {
+        let _ = writeln!(
+            out,
+            "  R: mean equilibrium ratio 2|F1 − F2|/|F1 + F2| of an SHPB record over its window (0: the specimen in force balance)"
+        );
+    }
     if r.groups.iter().any(|g| g.records > 1) {
         let _ = writeln!(
             out,
