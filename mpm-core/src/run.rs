@@ -23,10 +23,12 @@ pub struct RunSummary {
     pub results: Vec<NamedResult>,
 }
 
-/// Run `scene` writing into `dir`; `progress(t, t_end)` is called after every step.
+/// Run `scene` writing into `dir`; `start(time_step)` is called once Δt is chosen (to warn
+/// about a risky one, `TimeStep::risk`), `progress(t, t_end)` after every step.
 pub fn run_scene(
     scene: Scene,
     dir: &Path,
+    start: impl FnOnce(&TimeStep),
     progress: impl FnMut(f64, f64),
 ) -> std::io::Result<RunSummary> {
     std::fs::create_dir_all(dir)?;
@@ -37,6 +39,7 @@ pub fn run_scene(
             scene.output.history_every,
             scene.output.snapshots,
             dir,
+            start,
             progress,
         ),
         Simulation::Solid(s) => run(
@@ -45,6 +48,7 @@ pub fn run_scene(
             scene.output.history_every,
             scene.output.snapshots,
             dir,
+            start,
             progress,
         ),
     }
@@ -56,9 +60,11 @@ fn run<const D: usize>(
     history_every: usize,
     snapshots: usize,
     dir: &Path,
+    start: impl FnOnce(&TimeStep),
     mut progress: impl FnMut(f64, f64),
 ) -> std::io::Result<RunSummary> {
     let time_step = solver.initialize();
+    start(&time_step);
     let mut history = HistoryWriter::create(&dir.join("history.csv"), &solver)?;
     history.write(&solver)?;
     let mut rest = RestTracker::default();

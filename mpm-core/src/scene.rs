@@ -934,7 +934,7 @@ mod tests {
         let _ = std::fs::remove_dir_all(&dir);
         let mut scene = load(&scenes().join("single_particle.toml")).unwrap();
         scene.end = 1.0;
-        let summary = crate::run::run_scene(scene, &dir, |_, _| {}).unwrap();
+        let summary = crate::run::run_scene(scene, &dir, |_| {}, |_, _| {}).unwrap();
         assert!(summary.failure.is_none());
         assert_eq!(summary.steps, 63);
         let history = std::fs::read_to_string(dir.join("history.csv")).unwrap();
@@ -960,7 +960,7 @@ mod tests {
             "{e}"
         );
         std::fs::write(&path, text.replace("end = 3.5", "end = 1e30")).unwrap();
-        let summary = crate::run::run_scene(load(&path).unwrap(), &dir, |_, _| {}).unwrap();
+        let summary = crate::run::run_scene(load(&path).unwrap(), &dir, |_| {}, |_, _| {}).unwrap();
         let failure = summary.failure.unwrap();
         assert_eq!(summary.steps, 0);
         assert!(

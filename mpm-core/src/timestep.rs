@@ -32,6 +32,30 @@ pub struct TimeStep {
     pub criterion: Criterion,
     /// Δt allowed by the CFL estimate alone (with the safety factor) [s].
     pub cfl_dt: f64,
+    /// The safety factor of the estimate [-].
+    pub safety: f64,
+}
+
+impl TimeStep {
+    /// Why this Δt is likely to be unstable, if it is: above the bare CFL limit
+    /// h/(c + |v|) (safety > 1, or a given Δt beyond it).
+    pub fn risk(&self) -> Option<String> {
+        let limit = self.cfl_dt / self.safety;
+        if self.dt <= limit {
+            return None;
+        }
+        Some(match self.criterion {
+            Criterion::Given => format!(
+                "time.dt = {:.4e} s exceeds the CFL limit h/(c+|v|) = {limit:.4e} s ({:.2}x): explicit MPM is unstable there; leave dt out and set time.safety (0.2-0.5)",
+                self.dt,
+                self.dt / limit
+            ),
+            _ => format!(
+                "time.safety = {} exceeds 1: dt = {:.4e} s is above the CFL limit h/(c+|v|) = {limit:.4e} s, where explicit MPM is unstable; use 0.2-0.5",
+                self.safety, self.dt
+            ),
+        })
+    }
 }
 
 impl fmt::Display for TimeStep {
@@ -64,6 +88,7 @@ pub fn choose(
             dt,
             criterion: Criterion::Given,
             cfl_dt,
+            safety,
         };
     }
     let mut best = TimeStep {
@@ -73,6 +98,7 @@ pub fn choose(
             cell,
         },
         cfl_dt,
+        safety,
     };
     if let Some((stiffness, mass)) = stiffest_spring {
         let dt = safety * 2.0 * (mass / stiffness).sqrt();
@@ -81,6 +107,7 @@ pub fn choose(
                 dt,
                 criterion: Criterion::Spring { stiffness, mass },
                 cfl_dt,
+                safety,
             };
         }
     }
@@ -97,6 +124,22 @@ pub fn node_mass_cutoff(cell: f64, max_speed: f64, dt: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_time_step_above_the_cfl_limit_is_named_with_its_setting() {
+        // h = 0.05 m, c + |v| = 1 m/s: the bare CFL limit is 0.05 s.
+        assert_eq!(choose(0.05, 1.0, None, 0.3, None).risk(), None);
+        let risky = choose(0.05, 1.0, None, 1.5, None).risk().unwrap();
+        assert!(risky.starts_with("time.safety = 1.5 exceeds 1"), "{risky}");
+        assert!(risky.contains("5.0000e-2 s"), "{risky}");
+        assert_eq!(choose(0.05, 1.0, None, 0.3, Some(0.04)).risk(), None);
+        let given = choose(0.05, 1.0, None, 0.3, Some(0.1)).risk().unwrap();
+        assert!(
+            given.starts_with("time.dt = 1.0000e-1 s exceeds the CFL limit"),
+            "{given}"
+        );
+        assert!(given.contains("(2.00x)"), "{given}");
+    }
 
     /// Leapfrog on the node oscillator ü = −ω² u with ω² = c²/(h² N): amplitude after
     /// 10³ steps relative to the start.

@@ -29,7 +29,12 @@ pub fn run(args: Args) -> Result<()> {
     bar.set_style(ProgressStyle::with_template(
         "{bar:40} {percent:>3}% t = {msg} [{elapsed} < {eta}]",
     )?);
-    let summary = mpm_core::run::run_scene(scene, &out, |t, end| {
+    let warn = |ts: &mpm_core::timestep::TimeStep| {
+        if let Some(risk) = ts.risk() {
+            bar.suspend(|| eprintln!("warning: {risk}"));
+        }
+    };
+    let summary = mpm_core::run::run_scene(scene, &out, warn, |t, end| {
         bar.set_position((1000.0 * t / end) as u64);
         bar.set_message(format!("{t:.3e} s"));
     })
@@ -46,7 +51,10 @@ pub fn run(args: Args) -> Result<()> {
     }
     energy_chart(&out.join("history.csv"), &out.join("energy.png"), &name)?;
     if let Some(e) = summary.failure {
-        anyhow::bail!("{e}");
+        match summary.time_step.risk() {
+            Some(risk) => anyhow::bail!("{e}\n  likely cause: {risk}"),
+            None => anyhow::bail!("{e}"),
+        }
     }
     Ok(())
 }
