@@ -137,6 +137,19 @@ pub fn run(args: Args) -> Result<()> {
         failed,
         info
     );
+    let missing_945 = crate::shpb::steel_945_experiments().is_none();
+    let missing_304l = crate::fit::verify::ss304l_set_path().is_none();
+    if missing_945 || missing_304l {
+        println!(
+            "note: the real-data rows did not run ({}): the shared data folder ../shared/data is not beside the repository",
+            [(missing_945, "945 SHPB pairs"), (missing_304l, "304L leave-one-rate-out")]
+                .iter()
+                .filter(|(missing, _)| *missing)
+                .map(|(_, rows)| *rows)
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
     if failed > 0 {
         bail!("{failed} verification case(s) failed");
     }
