@@ -495,26 +495,18 @@ fn missing_and_bad_header_metadata_name_the_file_line_and_keys() {
         msg.contains("rate_x.csv: no `temperature`") && msg.contains("`temperature_K`"),
         "{msg}"
     );
-    let bad = headed_csv("fast", "temperature_K: 297", 1.0);
-    let dir = folder(
-        "header-bad",
-        &[("rate_x.csv", &bad), ("g.toml", HEADED_TOML)],
-    );
-    let msg = TensileExperiment::load_all(&dir.join("g.toml"))
-        .unwrap_err()
-        .to_string();
+    let header_error = |test: &str, csv: &str| -> String {
+        let dir = folder(test, &[("rate_x.csv", csv), ("g.toml", HEADED_TOML)]);
+        TensileExperiment::load_all(&dir.join("g.toml"))
+            .unwrap_err()
+            .to_string()
+    };
+    let msg = header_error("header-bad", &headed_csv("fast", "temperature_K: 297", 1.0));
     assert!(
         msg.contains("rate_x.csv:2: header `nominal_engineering_strain_rate_per_s`: \"fast\""),
         "{msg}"
     );
-    let cold = headed_csv("1", "temperature_C: -300", 1.0);
-    let dir = folder(
-        "header-cold",
-        &[("rate_x.csv", &cold), ("g.toml", HEADED_TOML)],
-    );
-    let msg = TensileExperiment::load_all(&dir.join("g.toml"))
-        .unwrap_err()
-        .to_string();
+    let msg = header_error("header-cold", &headed_csv("1", "temperature_C: -300", 1.0));
     assert!(
         msg.contains("rate_x.csv:3: header `temperature_C`") && msg.contains("positive"),
         "{msg}"

@@ -81,11 +81,11 @@ fn refuse_poor_fit(file: &Path, set: &FitSet, result: &FitResult) -> Result<()> 
 /// the mean measured magnitude.
 pub const VALIDATION_RMS: f64 = 0.05;
 
-/// Fail unless every group's RMS against its mean curve is at most `VALIDATION_RMS` and,
-/// when `stages` (a fit, not a prediction), every stage converged.
-pub fn validate(file: &Path, set: &FitSet, result: &FitResult, stages: bool) -> Result<()> {
+/// Fail unless every group's RMS against its mean curve is at most `VALIDATION_RMS` and
+/// every stage (none for a prediction) converged.
+pub fn validate(file: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
     let mut failures = Vec::new();
-    for (i, s) in result.stages.iter().enumerate().filter(|_| stages) {
+    for (i, s) in result.stages.iter().enumerate() {
         if !s.runs[s.best].converged {
             failures.push(format!(
                 "stage {} did not converge: {}",
@@ -192,7 +192,7 @@ pub fn run(args: Args) -> Result<()> {
     }
     println!("report, CSVs and charts in {}", args.out.display());
     if args.validate {
-        validate(&args.set, &set, &result, true)?;
+        validate(&args.set, &set, &result)?;
     }
     Ok(())
 }

@@ -50,7 +50,7 @@ pub fn run(args: Args) -> Result<()> {
     charts::fit_charts(&args.out, &set, &result)?;
     println!("report, CSVs and charts in {}", args.out.display());
     if args.validate {
-        validate(&args.set, &set, &result, false)?;
+        validate(&args.set, &set, &result)?;
     }
     Ok(())
 }

@@ -202,14 +202,7 @@ impl ShpbExperiment {
         };
 
         let data_file = sidecar.relative_path(spec.data.get_ref());
-        let table = CsvTable::read(&data_file)?;
-        if table.len() < 2 {
-            return Err(ExperimentError::TooFewRows {
-                file: data_file,
-                found: table.len(),
-                needed: 2,
-            });
-        }
+        let table = CsvTable::read_rows(&data_file, 2)?;
         let time_s = sidecar.column(&table, "columns.time", &spec.columns.time, Dimension::Time)?;
         sidecar.check_time_increases(&table, &spec.columns.time, &time_s)?;
         let incident = gauge_strain(&sidecar, &table, "columns.incident", &spec.columns.incident)?;

@@ -91,6 +91,19 @@ impl CsvTable {
         })
     }
 
+    /// `read`, and at least `needed` data rows.
+    pub fn read_rows(file: &Path, needed: usize) -> Result<CsvTable, ExperimentError> {
+        let table = CsvTable::read(file)?;
+        if table.len() < needed {
+            return Err(ExperimentError::TooFewRows {
+                file: file.to_path_buf(),
+                found: table.len(),
+                needed,
+            });
+        }
+        Ok(table)
+    }
+
     pub fn len(&self) -> usize {
         self.rows.len()
     }

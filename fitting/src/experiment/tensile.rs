@@ -249,14 +249,7 @@ fn read_record(
     data_file: PathBuf,
     name: String,
 ) -> Result<TensileExperiment, ExperimentError> {
-    let table = CsvTable::read(&data_file)?;
-    if table.len() < 2 {
-        return Err(ExperimentError::TooFewRows {
-            file: data_file,
-            found: table.len(),
-            needed: 2,
-        });
-    }
+    let table = CsvTable::read_rows(&data_file, 2)?;
     let (temperature_k, temperature_source) = metadata(
         sidecar,
         &table,
@@ -296,6 +289,54 @@ fn read_record(
     })
 }
 
+/// A quantity given either as its own column (`direct`) or as a raw column over a
+/// geometric divisor (`raw`): strain or extension / gauge length, stress or force / area.
+struct Either<'a> {
+    direct: (&'static str, &'a Option<ColumnSpec>, Dimension),
+    /// Key, column, dimension and SI unit of the raw column.
+    raw: (
+        &'static str,
+        &'a Option<ColumnSpec>,
+        Dimension,
+        &'static str,
+    ),
+    /// The divisor [SI], or what is missing for it.
+    divisor: Result<f64, &'static str>,
+    /// How a derived value was formed and the likely mistake, from (divisor, limit).
+    how: fn(f64, f64) -> String,
+}
+
+/// The values of `q` [SI]: the direct column, or the raw column over the divisor, each
+/// derived value checked against the direct dimension's plausible magnitude.
+fn direct_or_derived(
+    sidecar: &Sidecar,
+    table: &CsvTable,
+    spec: &TensileFile,
+    q: Either,
+) -> Result<Vec<f64>, ExperimentError> {
+    let (key, direct, dimension) = q.direct;
+    let (raw_key, raw, raw_dimension, raw_unit) = q.raw;
+    match (direct, raw) {
+        (Some(c), None) => sidecar.column(table, &format!("columns.{key}"), c, dimension),
+        (None, Some(c)) => {
+            let divisor = q.divisor.map_err(|problem| {
+                sidecar.invalid(&format!("columns.{raw_key}"), c.name.span(), problem)
+            })?;
+            let values = sidecar.column(table, &format!("columns.{raw_key}"), c, raw_dimension)?;
+            let derived: Vec<f64> = values.iter().map(|v| v / divisor).collect();
+            let (limit, _) = dimension.plausible_magnitude();
+            let how = (q.how)(divisor, limit);
+            sidecar.check_plausible(table, c, (&values, raw_unit), &derived, limit, &how)?;
+            Ok(derived)
+        }
+        _ => Err(sidecar.invalid(
+            "columns",
+            spec.columns.span(),
+            format!("expected exactly one of `{key}` and `{raw_key}`"),
+        )),
+    }
+}
+
 /// Engineering strain [-]: the strain column, or the extension over the gauge length.
 fn strain_column(
     sidecar: &Sidecar,
@@ -304,30 +345,17 @@ fn strain_column(
     geometry: &Geometry,
 ) -> Result<Vec<f64>, ExperimentError> {
     let cols = spec.columns.get_ref();
-    match (&cols.strain, &cols.extension) {
-        (Some(s), None) => sidecar.column(table, "columns.strain", s, Dimension::Strain),
-        (None, Some(x)) => {
-            let l0 = geometry.gauge_length_m.ok_or_else(|| {
-                sidecar.invalid(
-                    "columns.extension",
-                    x.name.span(),
-                    "an extension column needs `geometry.gauge_length`",
-                )
-            })?;
-            let extension = sidecar.column(table, "columns.extension", x, Dimension::Length)?;
-            let strain: Vec<f64> = extension.iter().map(|u| u / l0).collect();
-            let (limit, _) = Dimension::Strain.plausible_magnitude();
-            let how = format!("over the gauge length {l0:e} m as a strain, beyond {limit}: is the extension's unit or the gauge length wrong?");
-            let source = (&extension[..], "m");
-            sidecar.check_plausible(table, x, source, &strain, limit, &how)?;
-            Ok(strain)
-        }
-        _ => Err(sidecar.invalid(
-            "columns",
-            spec.columns.span(),
-            "expected exactly one of `strain` and `extension`",
-        )),
-    }
+    let q = Either {
+        direct: ("strain", &cols.strain, Dimension::Strain),
+        raw: ("extension", &cols.extension, Dimension::Length, "m"),
+        divisor: geometry
+            .gauge_length_m
+            .ok_or("an extension column needs `geometry.gauge_length`"),
+        how: |l0, limit| {
+            format!("over the gauge length {l0:e} m as a strain, beyond {limit}: is the extension's unit or the gauge length wrong?")
+        },
+    };
+    direct_or_derived(sidecar, table, spec, q)
 }
 
 /// Engineering stress [Pa]: the stress column, or the force over the cross-section.
@@ -338,30 +366,17 @@ fn stress_column(
     geometry: &Geometry,
 ) -> Result<Vec<f64>, ExperimentError> {
     let cols = spec.columns.get_ref();
-    match (&cols.stress, &cols.force) {
-        (Some(s), None) => sidecar.column(table, "columns.stress", s, Dimension::Stress),
-        (None, Some(f)) => {
-            let a0 = geometry.area_m2.ok_or_else(|| {
-                sidecar.invalid(
-                    "columns.force",
-                    f.name.span(),
-                    "a force column needs `geometry.area` or `geometry.diameter`",
-                )
-            })?;
-            let force = sidecar.column(table, "columns.force", f, Dimension::Force)?;
-            let stress: Vec<f64> = force.iter().map(|f| f / a0).collect();
-            let (limit, _) = Dimension::Stress.plausible_magnitude();
-            let how = format!("Pa over the area A0 = {a0:e} m² as a stress, beyond {limit:e} Pa: is the force's unit or the cross-section wrong?");
-            let source = (&force[..], "N");
-            sidecar.check_plausible(table, f, source, &stress, limit, &how)?;
-            Ok(stress)
-        }
-        _ => Err(sidecar.invalid(
-            "columns",
-            spec.columns.span(),
-            "expected exactly one of `stress` and `force`",
-        )),
-    }
+    let q = Either {
+        direct: ("stress", &cols.stress, Dimension::Stress),
+        raw: ("force", &cols.force, Dimension::Force, "N"),
+        divisor: geometry
+            .area_m2
+            .ok_or("`geometry.area` or `geometry.diameter`"),
+        how: |a0, limit| {
+            format!("Pa over the area A0 = {a0:e} m² as a stress, beyond {limit:e} Pa: is the force's unit or the cross-section wrong?")
+        },
+    };
+    direct_or_derived(sidecar, table, spec, q)
 }
 
 /// Shorten `range` to end at (and include) its maximum of engineering stress.
