@@ -176,16 +176,20 @@ fn compress(material: Arc<dyn Material>, scheme: Scheme) -> Vec<Sample> {
         },
         velocity: [None, None, Some(-RATE * extent[2])],
         one_sided: false,
+        history: None,
     });
     let ts = solver.initialize();
     let t_end = STRAIN / RATE;
     let mut history = vec![sample(&solver)];
     let started = Instant::now();
     solver
-        .run_until(t_end, |s| {
-            history.push(sample(s));
-            Ok(())
-        })
+        .run_until(
+            t_end,
+            &mut [&mut |s: &Solver<3>| {
+                history.push(sample(s));
+                Ok(())
+            }],
+        )
         .unwrap_or_else(|e| panic!("{scheme:?}: {e}"));
     eprintln!(
         "{scheme:?}: {} particles, {ts}, {} steps in {:.2} s",

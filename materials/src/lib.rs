@@ -23,6 +23,7 @@ pub mod plasticity;
 pub mod return_principal;
 pub mod return_reference;
 pub mod scalar;
+pub mod signal;
 pub mod studies;
 pub mod sym_eigen;
 pub mod tensor;

@@ -1,7 +1,8 @@
 //! Boundary conditions.
 //!
 //! - Grid velocity conditions on node sets (eq. 7.28): the chosen components of
-//!   v_{n+1/2}^I are set to v̄ and those of a_n^I to zero (constant prescribed velocity);
+//!   v_{n+1/2}^I are set to v̄ and those of a_n^I to zero (constant, or scaled by a time
+//!   signal);
 //!   fixed supports set every component, rolling supports and symmetry planes only the
 //!   normal one. The points keep the velocity the condition took from the node.
 //! - One-sided conditions (a frictionless rigid wall that the body may leave): on the
@@ -16,6 +17,7 @@
 //!   f_MP = −κ_BC ((x_MP)_i − (X_MP)_i) in the chosen directions i [N], which keep working
 //!   when the grid moves under a grid shift.
 
+use materials::signal::TimeSignal;
 use nalgebra::SVector;
 
 /// A set of grid nodes chosen by their position.
@@ -47,34 +49,107 @@ impl<const D: usize> NodeSet<D> {
     }
 }
 
-/// Prescribed velocity components on a node set; `None` leaves a component free.
-#[derive(Debug, Clone, Copy, PartialEq)]
+const AXES: [&str; 3] = ["x", "y", "z"];
+
+impl<const D: usize> std::fmt::Display for NodeSet<D> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            NodeSet::Plane { axis, at } => write!(f, "nodes on {} = {at} m", AXES[*axis]),
+            NodeSet::Below { axis, at } => write!(f, "nodes at {} <= {at} m", AXES[*axis]),
+            NodeSet::Above { axis, at } => write!(f, "nodes at {} >= {at} m", AXES[*axis]),
+            NodeSet::Inside { min, max } => write!(
+                f,
+                "nodes in the box {:?} .. {:?} m",
+                min.as_slice(),
+                max.as_slice()
+            ),
+        }
+    }
+}
+
+impl<const D: usize> std::fmt::Display for VelocityBc<D> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let set: Vec<String> = (self.velocity.iter().enumerate())
+            .filter_map(|(i, v)| v.map(|v| format!("v_{} = {v} m/s", AXES[i])))
+            .collect();
+        write!(f, "{} on {}", set.join(", "), self.nodes)?;
+        if self.one_sided {
+            write!(f, " (one-sided wall)")?;
+        }
+        if self.history.is_some() {
+            write!(f, " (scaled by a time history)")?;
+        }
+        Ok(())
+    }
+}
+
+/// Prescribed velocity components on a node set; `None` leaves a component free. With a
+/// `history` the components are v̄_i s(t), the signal taken at the leapfrog's velocity time
+/// t_{n+1/2}.
+#[derive(Debug, Clone, PartialEq)]
 pub struct VelocityBc<const D: usize> {
     pub nodes: NodeSet<D>,
     pub velocity: [Option<f64>; D],
     /// Only stop motion into the wall (needs `Below` or `Above` nodes).
     pub one_sided: bool,
+    /// Time factor s(t) of the prescribed components [-]; `None` for constant.
+    pub history: Option<TimeSignal<f64>>,
 }
 
 impl<const D: usize> VelocityBc<D> {
+    /// Zero velocity component `axis` on the node set `nodes`.
+    pub fn normal(nodes: NodeSet<D>, axis: usize) -> Self {
+        let mut velocity = [None; D];
+        velocity[axis] = Some(0.0);
+        VelocityBc {
+            nodes,
+            velocity,
+            one_sided: false,
+            history: None,
+        }
+    }
+
+    /// No radial velocity on and beyond the axis r = 0 of an axisymmetric model.
+    pub fn axis() -> Self {
+        Self::normal(NodeSet::Below { axis: 0, at: 0.0 }, 0)
+    }
+
+    /// The prescribed components at time `t` [m/s].
+    pub fn velocity_at(&self, t: f64) -> [Option<f64>; D] {
+        match &self.history {
+            None => self.velocity,
+            Some(s) => {
+                let s = s.at(t);
+                self.velocity.map(|v| v.map(|v| v * s))
+            }
+        }
+    }
+
+    /// Largest prescribed speed component over the run [m/s].
+    pub fn peak_speed(&self) -> f64 {
+        let scale = self.history.as_ref().map_or(1.0, |s| {
+            s.values().iter().fold(0.0, |m: f64, v| m.max(v.abs()))
+        });
+        self.velocity
+            .iter()
+            .flatten()
+            .fold(0.0, |m: f64, v| m.max(v.abs()))
+            * scale
+    }
+
     /// All components zero.
     pub fn fixed(nodes: NodeSet<D>) -> Self {
         VelocityBc {
             nodes,
             velocity: [Some(0.0); D],
             one_sided: false,
+            history: None,
         }
     }
 
     /// Zero normal velocity on the plane x_axis = at (rolling support, symmetry plane).
     pub fn symmetry(axis: usize, at: f64) -> Self {
-        let mut velocity = [None; D];
-        velocity[axis] = Some(0.0);
-        VelocityBc {
-            nodes: NodeSet::Plane { axis, at },
-            velocity,
-            one_sided: false,
-        }
+        Self::normal(NodeSet::Plane { axis, at }, axis)
     }
 
     /// A frictionless rigid wall at x_axis = at that the body (on the side `above` of it)
@@ -90,6 +165,7 @@ impl<const D: usize> VelocityBc<D> {
             },
             velocity,
             one_sided: true,
+            history: None,
         }
     }
 

@@ -38,3 +38,38 @@ pub struct SimulationError {
     pub particle: Option<usize>,
     pub cause: Cause,
 }
+
+/// What kind of failure a run met: the prediction itself went bad (an optimizer rejects
+/// the trial parameters and goes on), or the model asked for more than the limits allow
+/// (fix the input).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FailureKind {
+    /// Non-finite values, inverted or failed material updates, energy or speed beyond
+    /// bounds, points thrown off or out of the allowed region.
+    Divergence,
+    /// The run or the grid would exceed `materials::limits`.
+    Limit,
+}
+
+impl Cause {
+    pub fn kind(&self) -> FailureKind {
+        match self {
+            Cause::TooManySteps(_) | Cause::GridTooLarge(_) => FailureKind::Limit,
+            Cause::NonFinite { .. }
+            | Cause::InvertedDeformation { .. }
+            | Cause::Material(_)
+            | Cause::LeftDomain { .. }
+            | Cause::EnergyBlowUp { .. }
+            | Cause::SpeedLimit { .. }
+            | Cause::Escaped { .. }
+            | Cause::EnergyError { .. } => FailureKind::Divergence,
+        }
+    }
+}
+
+impl SimulationError {
+    /// The prediction diverged (rather than hitting a limit).
+    pub fn is_divergence(&self) -> bool {
+        self.cause.kind() == FailureKind::Divergence
+    }
+}

@@ -90,13 +90,14 @@ impl<const D: usize> Grid<D> {
         std::array::from_fn(|i| floor_i64((x[i] - self.origin[i]) * self.inv_spacing[i]))
     }
 
-    /// Refit the stored node block to hold cells from `cell_min` to `cell_max` (inclusive)
-    /// and clear every node.
-    pub fn fit(&mut self, cell_min: [i64; D], cell_max: [i64; D]) {
-        self.lo = cell_min;
+    /// Refit the stored node block to hold the stencils of points in cells from
+    /// `cell_min` to `cell_max` (inclusive) for a kernel reaching `support` nodes per axis
+    /// from `pad` nodes below a cell's lower corner, and clear every node.
+    pub fn fit(&mut self, cell_min: [i64; D], cell_max: [i64; D], pad: usize, support: usize) {
         let mut stride = 1;
         for i in 0..D {
-            self.dims[i] = (cell_max[i] - cell_min[i] + 2) as usize;
+            self.lo[i] = cell_min[i] - pad as i64;
+            self.dims[i] = (cell_max[i] - cell_min[i]) as usize + support;
             self.strides[i] = stride;
             stride *= self.dims[i];
         }
@@ -181,7 +182,7 @@ mod tests {
     #[test]
     fn locate_finds_the_enclosing_cell_and_local_coordinates() {
         let mut g = Grid::new(Vector2::new(0.5, 0.25), Vector2::new(-1.0, 0.0));
-        g.fit([0, 0], [3, 3]);
+        g.fit([0, 0], [3, 3], 0, 2);
         let x = Vector2::new(0.1, 0.3);
         let (base, xi) = g.locate(&x);
         assert_eq!(g.cell_of(&x), [2, 1]);

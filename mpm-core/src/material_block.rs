@@ -7,6 +7,7 @@ use materials::{Material, State};
 use std::ops::Range;
 use std::sync::Arc;
 
+#[derive(Clone)]
 pub struct MaterialBlock {
     pub name: String,
     pub material: Arc<dyn Material>,

@@ -1,13 +1,16 @@
 //! Run output: a CSV time history and particle snapshots as legacy binary VTK files
 //! (POLYDATA vertices) that ParaView opens.
 //!
-//! History columns: t [s], kinetic, internal (stress work), external work, boundary work
-//! and energy error [J]; momentum p_i [kg m/s]; with several bodies, each body's kinetic
-//! energy kinetic_<body> [J]; per rigid body the contact force on it
-//! F_i [N] and the number of points in contact; per control point its position x_i [m].
+//! History columns (each name carries its unit): t [s], kinetic, internal (stress work),
+//! external work, boundary work and energy error [J]; momentum p_i [kg m/s]; with several
+//! bodies, each body's kinetic energy kinetic_<body> [J]; per rigid body the contact force
+//! on it F_i [N] and the number of points in contact; per control point its position
+//! x_i [m]. Plane strain: per metre of thickness ([J/m], [kg/s], [N/m]).
 //! Snapshot point data: velocity [m/s], Cauchy stress σ (3×3) [Pa], von Mises stress [Pa],
 //! α [-], θ [K], J = det F [-], body index.
 
+use crate::kinematics::Kinematics;
+use crate::observer::Observer;
 use crate::solver::Solver;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
@@ -16,7 +19,34 @@ use std::path::{Path, PathBuf};
 /// Axis names of columns and results.
 pub const AXES: [&str; 3] = ["x", "y", "z"];
 
-/// Streams one history row per call; flushed every row so a failed run keeps its history.
+/// Units of the history columns: plane-strain quantities are per metre of thickness,
+/// axisymmetric ones of the full ring.
+struct Units {
+    energy: &'static str,
+    momentum: &'static str,
+    force: &'static str,
+}
+
+impl Units {
+    fn of(kinematics: Kinematics) -> Self {
+        match kinematics {
+            Kinematics::PlaneStrain => Units {
+                energy: "J/m",
+                momentum: "kg/s",
+                force: "N/m",
+            },
+            Kinematics::Axisymmetric | Kinematics::Solid => Units {
+                energy: "J",
+                momentum: "kg m/s",
+                force: "N",
+            },
+        }
+    }
+}
+
+/// Streams one history row per observed step (wrap it in `observer::Every` to thin it);
+/// flushed every row so a failed run keeps its history. Column names carry their units,
+/// e.g. `kinetic [J]`, `platen_force_z [N]`.
 pub struct HistoryWriter {
     out: BufWriter<File>,
 }
@@ -24,31 +54,39 @@ pub struct HistoryWriter {
 impl HistoryWriter {
     pub fn create<const D: usize>(path: &Path, solver: &Solver<D>) -> io::Result<Self> {
         let mut out = BufWriter::new(File::create(path)?);
-        let mut cols: Vec<String> = [
-            "t",
-            "kinetic",
-            "internal",
-            "external_work",
-            "boundary_work",
-            "energy_error",
-        ]
-        .map(String::from)
-        .to_vec();
-        cols.extend((0..D).map(|i| format!("momentum_{}", AXES[i])));
+        let u = Units::of(solver.settings.kinematics);
+        let mut cols: Vec<String> = vec!["t [s]".into()];
+        cols.extend(
+            [
+                "kinetic",
+                "internal",
+                "external_work",
+                "boundary_work",
+                "energy_error",
+            ]
+            .map(|c| format!("{c} [{}]", u.energy)),
+        );
+        cols.extend((0..D).map(|i| format!("momentum_{} [{}]", AXES[i], u.momentum)));
         if solver.blocks.len() > 1 {
-            cols.extend(solver.blocks.iter().map(|b| format!("kinetic_{}", b.name)));
+            cols.extend(
+                solver
+                    .blocks
+                    .iter()
+                    .map(|b| format!("kinetic_{} [{}]", b.name, u.energy)),
+            );
         }
         for r in &solver.rigid {
-            cols.extend((0..D).map(|i| format!("{}_force_{}", r.body.name, AXES[i])));
-            cols.push(format!("{}_contacts", r.body.name));
+            cols.extend((0..D).map(|i| format!("{}_force_{} [{}]", r.body.name, AXES[i], u.force)));
+            cols.push(format!("{}_contacts [-]", r.body.name));
         }
         for (name, _) in &solver.control_points {
-            cols.extend((0..D).map(|i| format!("{name}_{}", AXES[i])));
+            cols.extend((0..D).map(|i| format!("{name}_{} [m]", AXES[i])));
         }
         writeln!(out, "{}", cols.join(","))?;
         Ok(HistoryWriter { out })
     }
 
+    /// A row for the current state.
     pub fn write<const D: usize>(&mut self, s: &Solver<D>) -> io::Result<()> {
         let e = &s.energies;
         let mut row = vec![
@@ -73,6 +111,46 @@ impl HistoryWriter {
         let text: Vec<String> = row.iter().map(|v| format!("{v:.9e}")).collect();
         writeln!(self.out, "{}", text.join(","))?;
         self.out.flush()
+    }
+}
+
+impl<const D: usize> Observer<D> for HistoryWriter {
+    fn observe(&mut self, s: &Solver<D>) -> io::Result<()> {
+        self.write(s)
+    }
+}
+
+/// VTK snapshots at `count` evenly spaced times up to `end` [s] (index 0 is the initial
+/// state).
+pub struct SnapshotWriter {
+    dir: PathBuf,
+    interval: f64,
+    next: usize,
+}
+
+impl SnapshotWriter {
+    pub fn new(dir: &Path, end: f64, count: usize) -> Self {
+        SnapshotWriter {
+            dir: dir.into(),
+            interval: end / count.max(1) as f64,
+            next: 0,
+        }
+    }
+
+    /// Write the current state as the next snapshot whatever the time.
+    pub fn write_next<const D: usize>(&mut self, s: &Solver<D>) -> io::Result<()> {
+        write_snapshot(&self.dir, self.next, s)?;
+        self.next += 1;
+        Ok(())
+    }
+}
+
+impl<const D: usize> Observer<D> for SnapshotWriter {
+    fn observe(&mut self, s: &Solver<D>) -> io::Result<()> {
+        if s.time >= self.next as f64 * self.interval - 0.5 * s.dt {
+            self.write_next(s)?;
+        }
+        Ok(())
     }
 }
 

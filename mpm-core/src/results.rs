@@ -9,6 +9,7 @@
 //! - per control point: its final position [m].
 
 use crate::material_block::MaterialBlock;
+use crate::observer::Observer;
 use crate::output::AXES;
 use crate::solver::Solver;
 use materials::State;
@@ -33,8 +34,8 @@ pub struct RestTracker {
     since: Vec<Option<f64>>,
 }
 
-impl RestTracker {
-    pub fn observe<const D: usize>(&mut self, s: &Solver<D>) {
+impl<const D: usize> Observer<D> for RestTracker {
+    fn observe(&mut self, s: &Solver<D>) -> io::Result<()> {
         self.peak.resize(s.blocks.len(), 0.0);
         self.since.resize(s.blocks.len(), None);
         for b in 0..s.blocks.len() {
@@ -47,6 +48,7 @@ impl RestTracker {
                 (false, _) => None,
             };
         }
+        Ok(())
     }
 }
 
@@ -143,13 +145,13 @@ mod tests {
         );
         s.initialize();
         let mut rest = RestTracker::default();
-        rest.observe(&s);
+        rest.observe(&s).unwrap();
         let (dt, steps) = (1e-4, 600);
         let mut travel = 0.0;
         for n in 0..steps {
             travel += v0 * (1.0f64 - 50.0 * dt).powi(n + 1) * dt;
             s.step().unwrap();
-            rest.observe(&s);
+            rest.observe(&s).unwrap();
         }
         let r = collect(&s, &rest);
         let get = |name: &str| r.iter().find(|x| x.name == name).unwrap().value;

@@ -3,12 +3,13 @@
 //! one plane per edge or triangle).
 //!
 //! Geometry is stated in the reference (t = 0) frame. At time t a body point X is at
-//! x = c + u(t) + R(t) (X − c), with u(t) a piecewise-linear translation table, R(t) a
+//! x = c + u(t) + R(t) (X − c), with u(t) a piecewise-linear translation signal, R(t) a
 //! rotation by the piecewise-linear angle φ(t) about a fixed axis through c (in 2D the
 //! axis is z). A point is inside when every plane has n·(X − p) < 0 (outward normals n);
 //! for an interior point the closest surface point is on the plane of largest signed
 //! distance d: X_C = X − d n.
 
+use materials::signal::TimeSignal;
 use nalgebra::{Rotation3, SMatrix, SVector, Unit, Vector3};
 
 /// A bounding plane: a point on it and its outward unit normal.
@@ -18,40 +19,18 @@ pub struct Plane<const D: usize> {
     pub normal: SVector<f64, D>,
 }
 
-/// Piecewise-linear function of time given by (t, value) knots; constant outside.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Table<T> {
-    pub knots: Vec<(f64, T)>,
-}
-
-impl<T: Copy + std::ops::Mul<f64, Output = T> + std::ops::Add<Output = T>> Table<T> {
-    pub fn at(&self, t: f64) -> T {
-        let k = &self.knots;
-        if t <= k[0].0 {
-            return k[0].1;
-        }
-        for w in k.windows(2) {
-            if t <= w[1].0 {
-                let s = (t - w[0].0) / (w[1].0 - w[0].0);
-                return w[0].1 * (1.0 - s) + w[1].1 * s;
-            }
-        }
-        k[k.len() - 1].1
-    }
-}
-
 /// Rotation about a fixed axis through `center` by the angle table [rad].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Rotation {
     pub center: Vector3<f64>,
     pub axis: Unit<Vector3<f64>>,
-    pub angle: Table<f64>,
+    pub angle: TimeSignal<f64>,
 }
 
 /// Prescribed rigid motion.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Motion<const D: usize> {
-    pub translation: Option<Table<SVector<f64, D>>>,
+    pub translation: Option<TimeSignal<SVector<f64, D>>>,
     pub rotation: Option<Rotation>,
 }
 
@@ -304,9 +283,7 @@ mod tests {
         b.motion.rotation = Some(Rotation {
             center: Vector3::zeros(),
             axis: Vector3::z_axis(),
-            angle: Table {
-                knots: vec![(0.0, 0.0), (1.0, std::f64::consts::FRAC_PI_2)],
-            },
+            angle: TimeSignal::new(vec![0.0, 1.0], vec![0.0, std::f64::consts::FRAC_PI_2]).unwrap(),
         });
         let pose = b.motion.pose(1.0);
         let x = pose.to_world(&Vector2::new(1.0, 0.0));

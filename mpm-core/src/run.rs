@@ -6,7 +6,8 @@
 //! `limits::TIME_STEPS` steps fails at step 0 (after the first history row).
 
 use crate::failure::{Cause, SimulationError};
-use crate::output::{write_snapshot, HistoryWriter};
+use crate::observer::{Every, Observer};
+use crate::output::{HistoryWriter, SnapshotWriter};
 use crate::results::{self, NamedResult, RestTracker};
 use crate::scene::{Scene, Simulation};
 use crate::solver::{RunError, Solver};
@@ -65,13 +66,24 @@ fn run<const D: usize>(
 ) -> std::io::Result<RunSummary> {
     let time_step = solver.initialize();
     start(&time_step);
-    let mut history = HistoryWriter::create(&dir.join("history.csv"), &solver)?;
-    history.write(&solver)?;
-    let mut rest = RestTracker::default();
-    rest.observe(&solver);
-    write_snapshot(dir, 0, &solver)?;
-    let snapshot_dt = end / snapshots.max(1) as f64;
-    let mut next_snapshot = 1;
+    let mut history = Every {
+        every: history_every,
+        inner: HistoryWriter::create(&dir.join("history.csv"), &solver)?,
+    };
+    let mut rest = Every {
+        every: history_every,
+        inner: RestTracker::default(),
+    };
+    let mut snapshot = SnapshotWriter::new(dir, end, snapshots);
+    let mut report = |s: &Solver<D>| {
+        progress(s.time, end);
+        Ok(())
+    };
+    let mut observers: [&mut dyn Observer<D>; 4] =
+        [&mut history, &mut rest, &mut snapshot, &mut report];
+    for o in observers.iter_mut().take(3) {
+        o.observe(&solver)?;
+    }
     let too_long = TIME_STEPS.check(end / time_step.dt, || {
         format!("time.end = {end:e} s at {time_step}")
     });
@@ -82,30 +94,19 @@ fn run<const D: usize>(
             particle: None,
             cause: Cause::TooManySteps(e),
         })),
-        Ok(_) => solver.run_until(end, |s| {
-            if s.step % history_every == 0 {
-                history.write(s)?;
-                rest.observe(s);
-            }
-            if s.time >= next_snapshot as f64 * snapshot_dt - 0.5 * s.dt {
-                write_snapshot(dir, next_snapshot, s)?;
-                next_snapshot += 1;
-            }
-            progress(s.time, end);
-            Ok(())
-        }),
+        Ok(_) => solver.run_until(end, &mut observers),
     };
     let failure = match result {
         Ok(()) => None,
         Err(RunError::Io(e)) => return Err(e),
         Err(RunError::Simulation(e)) => {
-            history.write(&solver)?;
-            write_snapshot(dir, next_snapshot, &solver)?;
+            history.inner.write(&solver)?;
+            snapshot.write_next(&solver)?;
             Some(e)
         }
     };
-    rest.observe(&solver);
-    let results = results::collect(&solver, &rest);
+    rest.inner.observe(&solver)?;
+    let results = results::collect(&solver, &rest.inner);
     results::write_csv(&dir.join("results.csv"), &results)?;
     Ok(RunSummary {
         time_step,

@@ -1,10 +1,18 @@
-//! Linear (bi-/trilinear) grid shape functions, appendix E, eq. E.4-E.7.
+//! Grid shape functions behind one interface, `Kernel`, and the one used today, linear
+//! (bi-/trilinear, appendix E, eq. E.4-E.7).
 //!
-//! For a point at local cell coordinates ξ_i = (x_i − x_i^min)/h_i ∈ [0, 1) the factors are
-//! a_0 = 1 − ξ, a_1 = ξ (eq. E.5) and their derivatives ∓1/h_i (eq. E.7). Corner `k` of
-//! the cell takes factor a_{bit_i(k)} in direction i, so N_k = Π_i a_{bit_i(k)} and
-//! ∂N_k/∂x_j = da_{bit_j(k)} Π_{i≠j} a_{bit_i(k)}. The corner order is binary (x fastest),
-//! which differs from the right-hand order of figure E.3 only in labelling.
+//! A kernel states its support as part of its type: a point reaches `SUPPORT` nodes per
+//! axis, starting `PAD` nodes below the lower corner of its cell. The grid padding and the
+//! slab width of the lock-free parallel scatter are derived from these, so a wider kernel
+//! (GIMP, CPDI) changes neither. Weights and gradients are evaluated once per particle and
+//! step into a `WeightCache` and read by every transfer of that step.
+//!
+//! Linear: for a point at local cell coordinates ξ_i = (x_i − x_i^min)/h_i ∈ [0, 1) the
+//! factors are a_0 = 1 − ξ, a_1 = ξ (eq. E.5) and their derivatives ∓1/h_i (eq. E.7).
+//! Corner `k` of the cell takes factor a_{bit_i(k)} in direction i, so
+//! N_k = Π_i a_{bit_i(k)} and ∂N_k/∂x_j = da_{bit_j(k)} Π_{i≠j} a_{bit_i(k)}. The corner
+//! order is binary (x fastest), which differs from the right-hand order of figure E.3 only
+//! in labelling.
 
 use nalgebra::SVector;
 
@@ -45,6 +53,44 @@ pub fn linear<const D: usize>(xi: &SVector<f64, D>, inv_h: &SVector<f64, D>) -> 
         w.grad[k] = g;
     }
     w
+}
+
+/// A shape function: which nodes a point reaches and with what weights.
+pub trait Kernel<const D: usize> {
+    /// Nodes a point reaches along each axis.
+    const SUPPORT: usize;
+    /// Nodes of the stencil below the lower corner of the point's cell, per axis.
+    const PAD: usize;
+    /// Nodes of the stencil, SUPPORTᴰ.
+    const NODES: usize;
+    /// Weights N and gradients ∇N [1/m] of the stencil nodes (x fastest) for a point at
+    /// local cell coordinates `xi` ∈ [0, 1)ᴰ in cells of inverse size `inv_h` [1/m].
+    fn evaluate(
+        xi: &SVector<f64, D>,
+        inv_h: &SVector<f64, D>,
+        n: &mut [f64],
+        grad: &mut [SVector<f64, D>],
+    );
+}
+
+/// Bi-/trilinear shape functions (appendix E): the 2ᴰ corners of the point's cell.
+pub struct Linear;
+
+impl<const D: usize> Kernel<D> for Linear {
+    const SUPPORT: usize = 2;
+    const PAD: usize = 0;
+    const NODES: usize = corners(D);
+    #[inline]
+    fn evaluate(
+        xi: &SVector<f64, D>,
+        inv_h: &SVector<f64, D>,
+        n: &mut [f64],
+        grad: &mut [SVector<f64, D>],
+    ) {
+        let w = linear(xi, inv_h);
+        n.copy_from_slice(&w.n[..corners(D)]);
+        grad.copy_from_slice(&w.grad[..corners(D)]);
+    }
 }
 
 #[cfg(test)]

@@ -13,10 +13,10 @@
 //! is transfers (scatter, grid solve, gather, contact).
 
 use anyhow::Result;
+use materials::signal::TimeSignal;
 use materials::Material;
 use mpm_core::discretize::{fill, Shape};
-use mpm_core::rigid::Table;
-use mpm_core::{Kinematics, RigidBody, Settings, Solver};
+use mpm_core::{Kinematics, RigidBody, Scheme, Settings, Solver};
 use nalgebra::{SVector, Vector3};
 use rayon::prelude::*;
 use std::path::PathBuf;
@@ -40,14 +40,27 @@ pub struct Args {
     /// Material file of the compression case.
     #[arg(long, default_value = "data/materials/ofhc_copper.toml")]
     pub material: PathBuf,
+    /// Update scheme: usl (as the throughput targets were set), usf or musl (maps to the
+    /// grid and back twice a step).
+    #[arg(long, default_value = "usl", value_parser = ["usl", "usf", "musl"])]
+    pub scheme: String,
+}
+
+/// The scheme named by `--scheme`, without bulk viscosity (as the targets were set).
+fn settings(spacing: f64, scheme: &str) -> Settings<3> {
+    let mut settings = Settings::<3>::new(Kinematics::Solid, spacing);
+    settings.thesis_scheme();
+    settings.scheme = match scheme {
+        "usf" => Scheme::Usf,
+        "musl" => Scheme::Musl,
+        _ => Scheme::Usl,
+    };
+    settings
 }
 
 /// (a): a 40 × 40 × 40 point Neo-Hooke block (steel-like) spinning about z.
-fn block() -> Solver<3> {
-    // USL without bulk viscosity, as the throughput targets were set
-    let mut settings = Settings::<3>::new(Kinematics::Solid, 0.01);
-    settings.thesis_scheme();
-    let mut s = Solver::new(settings);
+fn block(scheme: &str) -> Solver<3> {
+    let mut s = Solver::new(settings(0.01, scheme));
     let points = fill(
         &Shape::Box {
             min: Vector3::zeros(),
@@ -71,13 +84,10 @@ fn block() -> Solver<3> {
 
 /// (b): a Ø10 × 10 mm cylinder between platens closing at 2 × 10 m/s, μ = 0.1, already
 /// flowing with them: v = ε̇ (x/2, y/2, h/2 − z), ε̇ = 20 m/s / h.
-fn compression(material: Arc<dyn Material>) -> Solver<3> {
+fn compression(material: Arc<dyn Material>, scheme: &str) -> Solver<3> {
     let (r, h) = (0.005, 0.01);
     let rate = 20.0 / h;
-    // USL without bulk viscosity, as the throughput targets were set
-    let mut settings = Settings::<3>::new(Kinematics::Solid, 0.000_461);
-    settings.thesis_scheme();
-    let mut s = Solver::new(settings);
+    let mut s = Solver::new(settings(0.000_461, scheme));
     let shape = Shape::Cylinder {
         start: Vector3::zeros(),
         end: Vector3::new(0.0, 0.0, h),
@@ -91,27 +101,22 @@ fn compression(material: Arc<dyn Material>) -> Solver<3> {
     }
     let (kappa, mu) = (1e7, 0.1);
     let mut lower = RigidBody::half_space("lower", Vector3::zeros(), Vector3::z(), kappa, mu);
-    lower.motion.translation = Some(Table {
-        knots: vec![(0.0, Vector3::zeros()), (1.0, Vector3::new(0.0, 0.0, 10.0))],
-    });
+    let platen =
+        |dz: f64| TimeSignal::new(vec![0.0, 1.0], vec![Vector3::zeros(), Vector3::z() * dz]);
+    lower.motion.translation = Some(platen(10.0).expect("increasing times"));
     let mut upper =
         RigidBody::half_space("upper", Vector3::new(0.0, 0.0, h), -Vector3::z(), kappa, mu);
-    upper.motion.translation = Some(Table {
-        knots: vec![
-            (0.0, Vector3::zeros()),
-            (1.0, Vector3::new(0.0, 0.0, -10.0)),
-        ],
-    });
+    upper.motion.translation = Some(platen(-10.0).expect("increasing times"));
     s.add_rigid_body(lower);
     s.add_rigid_body(upper);
     s
 }
 
 /// One throughput case: its key for `--cases`, label, scene and 2-thread target.
-struct Case {
+struct Case<'a> {
     key: char,
     name: &'static str,
-    make: Box<dyn Fn() -> Solver<3>>,
+    make: Box<dyn Fn() -> Solver<3> + 'a>,
     target: f64,
 }
 
@@ -181,13 +186,13 @@ pub fn run(args: Args) -> Result<()> {
         Case {
             key: 'a',
             name: "(a) Neo-Hooke block",
-            make: Box::new(block),
+            make: Box::new(|| block(&args.scheme)),
             target: 5e6,
         },
         Case {
             key: 'b',
             name: "(b) JC cylinder between platens",
-            make: Box::new(move || compression(copper.clone())),
+            make: Box::new(|| compression(copper.clone(), &args.scheme)),
             target: 1.5e6,
         },
     ];
@@ -197,6 +202,7 @@ pub fn run(args: Args) -> Result<()> {
     println!(
         "memory: {bytes} bytes per particle (particles, history, step scratch; grid not counted)"
     );
+    println!("scheme: {}", settings(1.0, &args.scheme).scheme);
     println!(
         "{:<34} {:>9} {:>8} {:>16} {:>10} {:>10} {:>8}",
         "case", "particles", "threads", "particle-steps/s", "material", "transfers", "plastic"

@@ -19,6 +19,9 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<()> {
     let scene = mpm_core::scene::load(&args.scene)?;
+    for line in scene.describe() {
+        println!("{line}");
+    }
     let name = args
         .scene
         .file_stem()
@@ -66,7 +69,7 @@ pub fn energy_chart(history: &Path, png: &Path, title: &str) -> Result<()> {
     let col = |name: &str| {
         header
             .iter()
-            .position(|h| h == name)
+            .position(|h| h.split(" [").next() == Some(name))
             .context(format!("history has no column {name}"))
     };
     let (t, k, w, x, b) = (

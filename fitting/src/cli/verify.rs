@@ -20,6 +20,31 @@ pub struct Args {
     /// Material parameter folder.
     #[arg(long, default_value = "data/materials")]
     pub materials: PathBuf,
+    /// Also write every row (case, measured and reference to full precision, result) to
+    /// this CSV file, to compare two builds value by value.
+    #[arg(long)]
+    pub values: Option<PathBuf>,
+}
+
+/// Every row with its numbers in shortest round-trip form.
+fn write_values(path: &Path, cases: &[materials::verify::CaseResult]) -> Result<()> {
+    let mut text = String::from("case,measured,reference,result\n");
+    for c in cases {
+        let result = if c.info {
+            "info"
+        } else if c.passed {
+            "pass"
+        } else {
+            "fail"
+        };
+        text += &format!(
+            "\"{}\",{:e},{:e},{result}\n",
+            c.name.replace('"', "\"\""),
+            c.measured,
+            c.reference
+        );
+    }
+    std::fs::write(path, text).map_err(|e| anyhow::anyhow!("{}: cannot write: {e}", path.display()))
 }
 
 /// Thesis figure 4.5: σ_xx against engineering strain for the four rate/temperature pairs.
@@ -120,6 +145,9 @@ pub fn run(args: Args) -> Result<()> {
     );
     for c in &cases {
         println!("{c}");
+    }
+    if let Some(path) = &args.values {
+        write_values(path, &cases)?;
     }
     if let Some(dir) = &args.charts {
         std::fs::create_dir_all(dir)?;

@@ -2,64 +2,15 @@
 //! (uniaxial tension/compression at constant true or engineering rate with a hold,
 //! simple shear, the SHPB specimen under a prescribed length history).
 
-use crate::limits::{TooLarge, LOAD_PATH_STEPS};
-use thiserror::Error;
+use crate::limits::LOAD_PATH_STEPS;
+use crate::signal::{SignalError, TimeSignal};
 
 /// A piecewise-linear function of time through the points (t_k, v_k), constant beyond
-/// its ends.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Ramp {
-    t: Vec<f64>,
-    v: Vec<f64>,
-}
+/// its ends (module `signal`).
+pub type Ramp = TimeSignal<f64>;
 
-#[derive(Debug, Error, PartialEq)]
-pub enum RampError {
-    #[error(
-        "ramp needs at least one point and as many times as values (got {0} times, {1} values)"
-    )]
-    Shape(usize, usize),
-    #[error("ramp times must be finite and strictly increasing (point {0})")]
-    NotIncreasing(usize),
-    #[error("ramp value {0} is not finite")]
-    NonFinite(usize),
-    #[error(transparent)]
-    TooLarge(#[from] TooLarge),
-}
-
-impl Ramp {
-    pub fn new(t: Vec<f64>, v: Vec<f64>) -> Result<Self, RampError> {
-        if t.is_empty() || t.len() != v.len() {
-            return Err(RampError::Shape(t.len(), v.len()));
-        }
-        if let Some(k) = (0..t.len()).find(|&k| !t[k].is_finite() || (k > 0 && t[k] <= t[k - 1])) {
-            return Err(RampError::NotIncreasing(k));
-        }
-        if let Some(k) = v.iter().position(|x| !x.is_finite()) {
-            return Err(RampError::NonFinite(k));
-        }
-        Ok(Ramp { t, v })
-    }
-
-    pub fn constant(v: f64) -> Self {
-        Ramp {
-            t: vec![0.0],
-            v: vec![v],
-        }
-    }
-
-    pub fn at(&self, time: f64) -> f64 {
-        let k = self.t.partition_point(|&tk| tk <= time);
-        if k == 0 {
-            return self.v[0];
-        }
-        if k == self.t.len() {
-            return self.v[k - 1];
-        }
-        let w = (time - self.t[k - 1]) / (self.t[k] - self.t[k - 1]);
-        self.v[k - 1] + w * (self.v[k] - self.v[k - 1])
-    }
-}
+/// Why a ramp or a load path cannot be made.
+pub type RampError = SignalError;
 
 /// How one component of the deformation is controlled.
 #[derive(Debug, Clone, PartialEq)]

@@ -124,18 +124,12 @@ pub fn plastic_impact(n: usize, end: f64) -> Result<ImpactResult, SimulationErro
         SVector::<f64, 2>::new(0.0, -VELOCITY),
     );
     for (axis, at, below) in [(0, 0.0, true), (0, WIDTH, false), (1, 0.0, true)] {
-        let mut velocity = [None; 2];
-        velocity[axis] = Some(0.0);
         let nodes = if below {
             NodeSet::Below { axis, at }
         } else {
             NodeSet::Above { axis, at }
         };
-        solver.velocity_bcs.push(VelocityBc {
-            nodes,
-            velocity,
-            one_sided: false,
-        });
+        solver.velocity_bcs.push(VelocityBc::normal(nodes, axis));
     }
     solver.initialize();
     let range = solver.blocks[bullet].range.clone();

@@ -18,8 +18,9 @@
 
 use crate::discretize::{fill, Shape};
 use crate::kinematics::Kinematics;
-use crate::rigid::{RigidBody, Rotation, Table};
+use crate::rigid::{RigidBody, Rotation};
 use crate::solver::{Scheme, Settings, Solver};
+use materials::signal::TimeSignal;
 use materials::NeoHooke;
 use nalgebra::{SVector, Vector3};
 use std::sync::Arc;
@@ -137,9 +138,7 @@ pub fn inclined_plate(
     plate.motion.rotation = Some(Rotation {
         center: Vector3::zeros(),
         axis: Vector3::x_axis(),
-        angle: Table {
-            knots: vec![(0.0, 0.0), (2.0, gamma)],
-        },
+        angle: TimeSignal::new(vec![0.0, 2.0], vec![0.0, gamma]).expect("increasing times"),
     });
     solver.add_rigid_body(plate);
     solver.initialize();

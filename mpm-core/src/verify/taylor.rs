@@ -140,6 +140,7 @@ pub fn taylor_bar(
             settings.scheme = Scheme::Musl;
             settings.safety = 0.3;
             let mut solver = Solver::new(settings);
+            solver.velocity_bcs.push(VelocityBc::axis());
             let points = fill(
                 &Shape::Box {
                     min: SVector::<f64, 2>::new(0.0, 0.0),
@@ -182,22 +183,12 @@ pub fn taylor_bar(
             );
             solver.velocity_bcs.push(VelocityBc::wall(2, 0.0, true));
             for axis in [0, 1] {
-                solver.velocity_bcs.push(symmetry(axis));
+                solver
+                    .velocity_bcs
+                    .push(VelocityBc::normal(NodeSet::Below { axis, at: 0.0 }, axis));
             }
             run(model, solver, s, end)
         }
-    }
-}
-
-/// Zero normal velocity on the grid nodes at and below the plane x_axis = 0 (a symmetry
-/// plane).
-fn symmetry<const D: usize>(axis: usize) -> VelocityBc<D> {
-    let mut velocity = [None; D];
-    velocity[axis] = Some(0.0);
-    VelocityBc {
-        nodes: NodeSet::Below { axis, at: 0.0 },
-        velocity,
-        one_sided: false,
     }
 }
 

@@ -1,0 +1,121 @@
+//! Bodies of a scene: a primitive shape filled with material points (module
+//! `discretize`), its material and initial velocity, the particle budget checked first.
+
+use super::check::Check;
+use super::spec::{BodySpec, SceneFile, ShapeSpec};
+use super::SceneError;
+use crate::discretize::{fill, Shape};
+use crate::kinematics::Kinematics;
+use crate::solver::Solver;
+use materials::limits::PARTICLES;
+use materials::Material;
+use nalgebra::SVector;
+use std::collections::HashMap;
+use std::sync::Arc;
+
+/// The shape of body `b` (field `field`) checked against the scene's dimension.
+fn shape<const D: usize>(b: &BodySpec, field: &str, check: &Check) -> Result<Shape<D>, SceneError> {
+    let sf = format!("{field}.shape");
+    let shape = match &b.shape {
+        ShapeSpec::Box { min, max } => {
+            let (min, max) = check.corners::<D>(&sf, min, max)?;
+            Shape::Box { min, max }
+        }
+        ShapeSpec::Disk { center, radius } | ShapeSpec::Sphere { center, radius } => {
+            let want = if matches!(b.shape, ShapeSpec::Disk { .. }) {
+                2
+            } else {
+                3
+            };
+            if want != D {
+                return Err(check.err(format!("{sf}.type"), format!("needs a {want}D scene")));
+            }
+            Shape::Ball {
+                center: check.vector(&format!("{sf}.center"), center)?,
+                radius: check.positive(&format!("{sf}.radius"), *radius)?,
+            }
+        }
+        ShapeSpec::Cylinder { start, end, radius } => {
+            if D != 3 {
+                return Err(check.err(
+                    format!("{sf}.type"),
+                    "cylinder needs a 3d scene (use a box in (r, z) for an axisymmetric one)",
+                ));
+            }
+            Shape::Cylinder {
+                start: check.vector(&format!("{sf}.start"), start)?,
+                end: check.vector(&format!("{sf}.end"), end)?,
+                radius: check.positive(&format!("{sf}.radius"), *radius)?,
+            }
+        }
+        ShapeSpec::Polygon { vertices } => {
+            if D != 2 || vertices.len() < 3 {
+                return Err(check.err(sf, "polygon needs a 2D scene and at least 3 vertices"));
+            }
+            let vertices = vertices
+                .iter()
+                .enumerate()
+                .map(|(i, v)| check.vector::<D>(&format!("{sf}.vertices[{i}]"), v))
+                .collect::<Result<_, _>>()?;
+            Shape::Polygon { vertices }
+        }
+    };
+    Ok(shape)
+}
+
+pub(super) fn add_bodies<const D: usize>(
+    solver: &mut Solver<D>,
+    spec: &SceneFile,
+    check: &Check,
+    materials: &HashMap<&str, Arc<dyn Material>>,
+) -> Result<(), SceneError> {
+    let (h, kinematics) = (solver.settings.spacing, solver.settings.kinematics);
+    let mut particles = 0.0;
+    for (k, b) in spec.bodies.iter().enumerate() {
+        let field = format!("bodies[{k}]");
+        let material = materials
+            .get(b.material.as_str())
+            .ok_or_else(|| {
+                check.err(
+                    format!("{field}.material"),
+                    format!("no material named `{}`", b.material),
+                )
+            })?
+            .clone();
+        let sf = format!("{field}.shape");
+        let shape = shape::<D>(b, &field, check)?;
+        let r_min = shape.bounds().0[0];
+        if kinematics == Kinematics::Axisymmetric && r_min < 0.0 {
+            return Err(check.err(
+                sf,
+                format!("reaches r = {r_min} m < 0: an axisymmetric body lies in r ≥ 0 (the axis is r = 0)"),
+            ));
+        }
+        if b.particles_per_cell == 0 {
+            return Err(check.err(format!("{field}.particles_per_cell"), "must be at least 1"));
+        }
+        let velocity = b
+            .velocity
+            .as_ref()
+            .map(|v| check.vector::<D>(&format!("{field}.velocity"), v))
+            .transpose()?
+            .unwrap_or(SVector::zeros());
+        let s = h / b.particles_per_cell as f64;
+        let (lo, hi) = shape.bounds();
+        let estimate: f64 = (0..D)
+            .map(|i| ((hi[i] - lo[i]) / s[i]).ceil() + 1.0)
+            .product();
+        particles += estimate;
+        PARTICLES
+            .check(particles, || {
+                format!("this body's bounding box {lo:?} .. {hi:?} m at a point spacing of {s:?} m (grid.spacing / particles_per_cell) holds about {estimate:.3e}")
+            })
+            .map_err(|e| check.err(sf.clone(), e.to_string()))?;
+        let points = fill(&shape, s, kinematics);
+        if points.is_empty() {
+            return Err(check.err(sf, "holds no material point (smaller than a sub-cell?)"));
+        }
+        solver.add_body(&b.name, material, &points, velocity);
+    }
+    Ok(())
+}

@@ -1,0 +1,57 @@
+//! The last motion stage: x ← x + ṽ Δt, the work of external and body forces on the
+//! grid velocity, and the domain and watchdog checks on every point.
+
+use super::Solver;
+use crate::failure::{Cause, SimulationError};
+use crate::sum::fixed_sum;
+use rayon::prelude::*;
+
+impl<const D: usize> Solver<D> {
+    /// x ← x + ṽ Δt, external work, domain and watchdog checks.
+    pub(super) fn advect(&mut self) -> Result<(), SimulationError> {
+        let dt = self.dt;
+        let b = self.settings.body_force;
+        let domain = self.settings.domain;
+        let watchdog = self.watchdog.as_ref();
+        let reach = watchdog.map_or(f64::INFINITY, |w| w.reach_at(self.time));
+        let p = &mut self.particles;
+        let s = &self.scratch;
+        let failure = p
+            .position
+            .par_iter_mut()
+            .zip(s.grid_velocity.par_iter())
+            .zip(p.velocity.par_iter())
+            .enumerate()
+            .filter_map(|(i, ((x, vg), v))| {
+                *x += vg * dt;
+                if !x.iter().all(|c| c.is_finite()) {
+                    return Some((i, Cause::NonFinite { what: "position" }));
+                }
+                if let Some(cause) = watchdog.and_then(|w| w.check_point(x, v, reach)) {
+                    return Some((i, cause));
+                }
+                if let Some((lo, hi)) = domain {
+                    if (0..D).any(|k| x[k] < lo[k] || x[k] > hi[k]) {
+                        return Some((
+                            i,
+                            Cause::LeftDomain {
+                                position: x.iter().cloned().collect(),
+                            },
+                        ));
+                    }
+                }
+                None
+            })
+            .min_by_key(|(i, _)| *i);
+        if let Some((i, cause)) = failure {
+            return Err(self.failure(Some(i), cause));
+        }
+        let p = &self.particles;
+        let power = |i: usize| (s.force[i] + b * p.mass[i]).dot(&s.grid_velocity[i]) * dt;
+        let ext = fixed_sum(p.len(), 0.0, power);
+        let abs = fixed_sum(p.len(), 0.0, |i| power(i).abs());
+        self.energies.external += ext;
+        self.energies.supplied += abs;
+        Ok(())
+    }
+}

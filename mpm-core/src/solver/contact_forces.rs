@@ -1,0 +1,79 @@
+//! Forces on the points from outside the continuum: applied (traction) forces, boundary
+//! springs (eq. 12.1) and penalty contact with rigid bodies (eq. 9.2-9.7). Contact
+//! candidates are searched every `search_interval` steps within a margin that covers the
+//! travel of points and body until the next search.
+
+use super::Solver;
+use crate::contact::candidate_force;
+use nalgebra::SVector;
+use rayon::prelude::*;
+
+impl<const D: usize> Solver<D> {
+    /// Applied, spring (eq. 12.1) and penalty contact (eq. 9.2-9.7) forces on particles.
+    pub(super) fn external_forces(&mut self) {
+        let p = &self.particles;
+        self.scratch.force.copy_from_slice(&p.applied_force);
+        for s in &self.springs {
+            for &i in &s.particles {
+                self.scratch.force[i] += s.force(&p.position[i], &p.reference_position[i]);
+            }
+        }
+        let (t, dt, step, h) = (self.time, self.dt, self.step, self.grid.min_spacing());
+        let max_speed = p
+            .velocity
+            .par_iter()
+            .map(|v| v.norm())
+            .reduce(|| 0.0, f64::max);
+        for rc in &mut self.rigid {
+            let body = &rc.body;
+            let pose = body.motion.pose(t);
+            let interval = body.search_interval.max(1);
+            if step % interval == 0 {
+                // margin: particle travel plus body travel until the next search, plus a cell
+                let later = body.motion.pose(t + interval as f64 * dt);
+                let reach = body.bounds.map_or_else(
+                    || {
+                        let (lo, hi) = (
+                            self.grid.node_position(0),
+                            self.grid.node_position(self.grid.nodes.len() - 1),
+                        );
+                        (hi - lo).norm() + (lo - pose.center).norm()
+                    },
+                    |(c, r)| (c - pose.center).norm() + r,
+                );
+                let turn = (later.rotation - pose.rotation).norm();
+                let margin = h
+                    + 2.0 * interval as f64 * dt * max_speed
+                    + (later.translation - pose.translation).norm()
+                    + turn * reach;
+                let candidates: Vec<usize> = (0..p.len())
+                    .into_par_iter()
+                    .filter(|&i| {
+                        let xb = pose.to_body(&p.position[i]);
+                        match body.bounds {
+                            Some((c, r)) => (xb - c).norm() < r + margin,
+                            None => body.nearest_plane(&xb).0 < margin,
+                        }
+                    })
+                    .collect();
+                rc.contact.set_candidates(candidates);
+            }
+            let c = &mut rc.contact;
+            let forces: Vec<Option<SVector<f64, D>>> = c
+                .candidates
+                .par_iter()
+                .zip(c.attachment.par_iter_mut())
+                .map(|(&i, a)| candidate_force(body, &pose, &p.position[i], a))
+                .collect();
+            c.force = SVector::zeros();
+            c.active = 0;
+            for (&i, f) in c.candidates.iter().zip(&forces) {
+                if let Some(f) = f {
+                    self.scratch.force[i] += f;
+                    c.force -= f;
+                    c.active += 1;
+                }
+            }
+        }
+    }
+}

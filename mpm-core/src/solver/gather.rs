@@ -1,0 +1,189 @@
+//! Grid-to-particle transfer (algorithms 11-12): point velocities from the nodal
+//! accelerations, the grid velocity ṽ for the position update, and the velocity gradient
+//! L = Σ v_I ⊗ ∇N_I that updates F, V, σ and the material history. Axisymmetric points
+//! take the hoop stretch r/R and the hoop rate v_r/r.
+
+use super::Solver;
+use crate::failure::Cause;
+use crate::failure::SimulationError;
+use crate::grid::Grid;
+use crate::kinematics::Kinematics;
+use crate::sum::fixed_sum;
+use crate::viscosity::BulkViscosity;
+use crate::weights::Stencil;
+use materials::{Material, State};
+use nalgebra::{Matrix3, SMatrix, SVector};
+use rayon::prelude::*;
+
+/// Embed the in-plane D×D block in a 3×3 tensor.
+#[inline]
+fn embed<const D: usize>(a: &SMatrix<f64, D, D>) -> Matrix3<f64> {
+    let mut m = Matrix3::zeros();
+    m.fixed_view_mut::<D, D>(0, 0).copy_from(a);
+    m
+}
+
+/// Σ N v_I, Σ N a_I and L = Σ v_I ⊗ ∇N_I at one point.
+#[inline]
+fn interpolate<const D: usize>(
+    grid: &Grid<D>,
+    w: &Stencil<'_, D>,
+) -> (SVector<f64, D>, SVector<f64, D>, SMatrix<f64, D, D>) {
+    let mut vg = SVector::<f64, D>::zeros();
+    let mut a = SVector::<f64, D>::zeros();
+    let mut l = SMatrix::<f64, D, D>::zeros();
+    for (c, offset) in w.offsets.iter().enumerate() {
+        let node = &grid.nodes[w.first + offset];
+        vg += node.velocity * w.n[c];
+        a += node.acceleration * w.n[c];
+        l += node.velocity * w.grad[c].transpose();
+    }
+    (vg, a, l)
+}
+
+/// What the deformation update of every point of one block shares.
+struct Deformation<'a> {
+    material: &'a dyn Material,
+    dt: f64,
+    axisymmetric: bool,
+    viscosity: Option<BulkViscosity>,
+    wave_speed: f64,
+    cell: f64,
+}
+
+/// One point's deformation state, updated in place.
+struct PointDeformation<'a> {
+    f: &'a mut Matrix3<f64>,
+    volume: &'a mut f64,
+    sigma: &'a mut Matrix3<f64>,
+    state: &'a mut State<f64>,
+    work: &'a mut f64,
+}
+
+impl Deformation<'_> {
+    /// F ← (I + L Δt) F (hoop stretch r/R when axisymmetric), V = det F V0, σ and history
+    /// from the material, bulk viscosity, and the stress work ½ (σV + σ'V') : D Δt.
+    fn update<const D: usize>(
+        &self,
+        l: &SMatrix<f64, D, D>,
+        vg: &SVector<f64, D>,
+        (x, x_ref, v0): (&SVector<f64, D>, &SVector<f64, D>, f64),
+        p: PointDeformation<'_>,
+    ) -> Result<(), Cause> {
+        let dt = self.dt;
+        let mut l3 = embed(l);
+        let mut f_new = (Matrix3::identity() + l3 * dt) * *p.f;
+        if self.axisymmetric {
+            // hoop stretch r/R and hoop rate v_r / r
+            l3[(2, 2)] = vg[0] / x[0];
+            f_new[(2, 2)] = (x[0] + vg[0] * dt) / x_ref[0];
+        }
+        let det = f_new.determinant();
+        if !det.is_finite() {
+            return Err(Cause::NonFinite {
+                what: "deformation gradient",
+            });
+        }
+        if det <= 0.0 {
+            return Err(Cause::InvertedDeformation { det_f: det });
+        }
+        let (mut sigma_new, state_new) = self
+            .material
+            .update(&f_new, dt, p.state)
+            .map_err(Cause::Material)?;
+        let vol_new = det * v0;
+        let d = (l3 + l3.transpose()) * 0.5;
+        if let Some(q) = self.viscosity {
+            let rho = self.material.density() / det;
+            let q = q.pressure(rho, self.wave_speed, self.cell, d.trace());
+            sigma_new -= Matrix3::identity() * q;
+        }
+        *p.work = 0.5 * (*p.sigma * *p.volume + sigma_new * vol_new).dot(&d) * dt;
+        *p.f = f_new;
+        *p.volume = vol_new;
+        *p.sigma = sigma_new;
+        *p.state = state_new;
+        Ok(())
+    }
+}
+
+impl<const D: usize> Solver<D> {
+    /// Grid-to-particle transfer (algorithms 11-12). With `motion`: v_MP ← v_MP + a_MP Δt
+    /// and ṽ stored for the position update. With `deformation`: F, V, σ and history.
+    pub(super) fn gather(
+        &mut self,
+        motion: bool,
+        deformation: bool,
+    ) -> Result<(), SimulationError> {
+        let dt = self.dt;
+        let grid = &self.grid;
+        let p = &mut self.particles;
+        let s = &mut self.scratch;
+        let weights = &s.weights;
+        let mut first_failure: Option<(usize, Cause)> = None;
+        for block in &mut self.blocks {
+            let r = block.range.clone();
+            let update = Deformation {
+                material: &*block.material,
+                dt,
+                axisymmetric: self.settings.kinematics == Kinematics::Axisymmetric,
+                viscosity: self.settings.bulk_viscosity,
+                wave_speed: block.wave_speed(),
+                cell: grid.min_spacing(),
+            };
+            let failure = (
+                &p.position[r.clone()],
+                &p.reference_position[r.clone()],
+                &mut p.velocity[r.clone()],
+                &p.volume0[r.clone()],
+                &mut p.volume[r.clone()],
+                &mut p.deformation[r.clone()],
+                &mut p.stress[r.clone()],
+                &mut block.state[..],
+                &mut s.grid_velocity[r.clone()],
+                &mut s.work[r.clone()],
+            )
+                .into_par_iter()
+                .enumerate()
+                .filter_map(
+                    |(j, (x, x_ref, v, v0, volume, f, sigma, state, v_grid, work))| {
+                        let i = r.start + j;
+                        let (vg, a, l) = interpolate(grid, &weights.stencil(i));
+                        if motion {
+                            *v += a * dt;
+                            *v_grid = vg;
+                            if !v.iter().all(|c| c.is_finite()) {
+                                return Some((i, Cause::NonFinite { what: "velocity" }));
+                            }
+                        }
+                        if !deformation {
+                            return None;
+                        }
+                        let point = PointDeformation {
+                            f,
+                            volume,
+                            sigma,
+                            state,
+                            work,
+                        };
+                        update
+                            .update(&l, &vg, (x, x_ref, *v0), point)
+                            .err()
+                            .map(|cause| (i, cause))
+                    },
+                )
+                .min_by_key(|(i, _)| *i);
+            if first_failure.is_none() {
+                first_failure = failure;
+            }
+        }
+        if let Some((i, cause)) = first_failure {
+            return Err(self.failure(Some(i), cause));
+        }
+        if deformation {
+            let w = &self.scratch.work;
+            self.energies.internal += fixed_sum(w.len(), 0.0, |i| w[i]);
+        }
+        Ok(())
+    }
+}

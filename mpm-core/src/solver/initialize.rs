@@ -1,0 +1,73 @@
+//! Preparing a run: Δt from the CFL estimate and spring stability (module `timestep`), the
+//! node mass cutoff, scratch arrays, the watchdog and the initial energy.
+
+use super::{Energies, Solver};
+use crate::timestep::{self, TimeStep};
+use crate::watchdog::Watchdog;
+use nalgebra::SVector;
+
+impl<const D: usize> Solver<D> {
+    /// Choose Δt (eq. 7.22-7.23 and spring stability) and prepare the run.
+    pub fn initialize(&mut self) -> TimeStep {
+        let n = self.particles.len();
+        let mut speed: f64 = 0.0;
+        for b in &self.blocks {
+            let c = b.wave_speed();
+            for p in b.range.clone() {
+                speed = speed.max(c + self.particles.velocity[p].norm());
+            }
+        }
+        let lightest = self
+            .particles
+            .mass
+            .iter()
+            .cloned()
+            .fold(f64::INFINITY, f64::min);
+        let stiffest = self
+            .rigid
+            .iter()
+            .map(|r| r.body.penalty)
+            .chain(self.springs.iter().map(|s| s.stiffness))
+            .fold(0.0, f64::max);
+        let spring = (stiffest > 0.0).then_some((stiffest, lightest));
+        let ts = timestep::choose(
+            self.grid.min_spacing(),
+            speed,
+            spring,
+            self.settings.safety,
+            self.settings.dt,
+        );
+        self.dt = ts.dt;
+        let stable = timestep::node_mass_cutoff(self.grid.min_spacing(), speed, ts.dt);
+        self.mass_cutoff = self.settings.mass_cutoff.max(stable);
+        self.scratch.force = vec![SVector::zeros(); n];
+        self.scratch.grid_velocity = vec![SVector::zeros(); n];
+        self.scratch.work = vec![0.0; n];
+        let v_ref = self
+            .particles
+            .velocity
+            .iter()
+            .map(|v| v.norm())
+            .chain(self.velocity_bcs.iter().map(|b| b.peak_speed()))
+            .fold(0.0, f64::max);
+        let c_max = self
+            .blocks
+            .iter()
+            .map(|b| b.wave_speed())
+            .fold(0.0, f64::max);
+        self.watchdog = Some(Watchdog::new(
+            &self.particles.position,
+            self.grid.min_spacing(),
+            (v_ref, c_max, self.settings.body_force.norm()),
+            self.settings.energy_error_fraction,
+        ));
+        let k0 = self.kinetic_energy();
+        self.energies = Energies {
+            kinetic: k0,
+            initial: k0,
+            supplied: k0,
+            ..Energies::default()
+        };
+        ts
+    }
+}

@@ -1,0 +1,352 @@
+//! Explicit MPM time stepping with the leapfrog on the grid (section 7.5, algorithms 6-12).
+//! A step is the list of named stages of its `Scheme` (module `scheme`), each stage one
+//! file: `grid_fit` (grid and shape-function weights), `contact_forces`, `scatter`
+//! (particle to grid), `grid_solve`, `gather` (grid to particle), `advect`, and the checks
+//! of `energies`.
+//!
+//! Nodes lighter than the cutoff fraction of the heaviest point that reaches them are not
+//! accelerated (v = p/m, a = 0); empty nodes get zero velocity.
+
+mod advect;
+mod contact_forces;
+mod energies;
+mod gather;
+mod grid_fit;
+mod grid_solve;
+mod initialize;
+mod scatter;
+mod scheme;
+mod settings;
+
+pub use energies::Energies;
+pub use scheme::{Scheme, Stage};
+pub use settings::Settings;
+
+use crate::boundary::{SpringBc, VelocityBc};
+use crate::contact::ContactState;
+use crate::failure::{Cause, SimulationError};
+use crate::grid::Grid;
+use crate::material_block::MaterialBlock;
+use crate::observer::Observer;
+use crate::particles::Particles;
+use crate::rigid::RigidBody;
+use crate::shape::corners;
+use crate::shift::GridShift;
+use crate::watchdog::Watchdog;
+use crate::weights::WeightCache;
+use materials::Material;
+use nalgebra::SVector;
+use std::sync::Arc;
+
+/// A rigid body and its contact state.
+#[derive(Clone)]
+pub struct RigidContact<const D: usize> {
+    pub body: RigidBody<D>,
+    pub contact: ContactState<D>,
+}
+
+/// Bytes of per-particle scratch the solver keeps between steps (work arrays and the
+/// linear shape-function weights).
+pub const SCRATCH_BYTES_PER_PARTICLE: usize =
+    2 * 3 * 8 + 8 + 4 + WeightCache::<3>::bytes_per_particle(corners(3));
+
+/// Per-particle work arrays of one step.
+#[derive(Clone, Default)]
+struct Scratch<const D: usize> {
+    /// Applied, spring and contact force on each particle [N].
+    force: Vec<SVector<f64, D>>,
+    /// Grid velocity interpolated to the particle, ṽ [m/s].
+    grid_velocity: Vec<SVector<f64, D>>,
+    /// Stress work increment of each particle [J].
+    work: Vec<f64>,
+    /// Particles bucketed by slab, and the start of each slab's bucket.
+    order: Vec<u32>,
+    slab_start: Vec<usize>,
+    /// Shape-function weights of every particle for this step.
+    weights: WeightCache<D>,
+}
+
+/// A model and its state. Cloning a solver before `initialize` is how a template makes
+/// new runs (module `template`).
+#[derive(Clone)]
+pub struct Solver<const D: usize> {
+    pub settings: Settings<D>,
+    pub particles: Particles<D>,
+    pub blocks: Vec<MaterialBlock>,
+    pub grid: Grid<D>,
+    pub velocity_bcs: Vec<VelocityBc<D>>,
+    pub springs: Vec<SpringBc<D>>,
+    pub rigid: Vec<RigidContact<D>>,
+    /// Named particles whose positions are recorded.
+    pub control_points: Vec<(String, usize)>,
+    pub time: f64,
+    pub step: usize,
+    pub dt: f64,
+    pub energies: Energies,
+    shift: Option<GridShift<D>>,
+    watchdog: Option<Watchdog<D>>,
+    /// Nodes lighter than this fraction of the heaviest point that reaches them are not
+    /// accelerated (they keep v = p/m and a = 0): the larger of `Settings::mass_cutoff`
+    /// and the stability limit (c Δt / 2h)² of `timestep::node_mass_cutoff`.
+    mass_cutoff: f64,
+    scratch: Scratch<D>,
+}
+
+impl<const D: usize> Solver<D> {
+    pub fn new(settings: Settings<D>) -> Self {
+        let grid = Grid::new(settings.spacing, settings.origin);
+        let shift = settings.grid_shift.map(|(a, seed)| GridShift::new(a, seed));
+        Solver {
+            settings,
+            particles: Particles::default(),
+            blocks: Vec::new(),
+            grid,
+            velocity_bcs: Vec::new(),
+            springs: Vec::new(),
+            rigid: Vec::new(),
+            control_points: Vec::new(),
+            time: 0.0,
+            step: 0,
+            dt: 0.0,
+            energies: Energies::default(),
+            shift,
+            watchdog: None,
+            mass_cutoff: 0.0,
+            scratch: Scratch::default(),
+        }
+    }
+
+    /// Add a body of one material from particle positions and volumes; returns its block
+    /// index. Every particle starts with velocity `velocity`, F = I and σ = 0.
+    pub fn add_body(
+        &mut self,
+        name: &str,
+        material: Arc<dyn Material>,
+        points: &[(SVector<f64, D>, f64)],
+        velocity: SVector<f64, D>,
+    ) -> usize {
+        let block = self.blocks.len();
+        let start = self.particles.len();
+        for (x, v) in points {
+            self.particles
+                .push(*x, velocity, *v, material.density(), block as u32);
+        }
+        let state = vec![material.initial_state(); points.len()];
+        self.blocks.push(MaterialBlock {
+            name: name.into(),
+            material,
+            range: start..self.particles.len(),
+            state,
+        });
+        block
+    }
+
+    pub fn add_rigid_body(&mut self, body: RigidBody<D>) {
+        self.rigid.push(RigidContact {
+            body,
+            contact: ContactState::default(),
+        });
+    }
+
+    /// Index of the particle nearest to `x` (lowest index on ties).
+    pub fn nearest_particle(&self, x: &SVector<f64, D>) -> usize {
+        let mut best = (f64::INFINITY, 0);
+        for (i, p) in self.particles.position.iter().enumerate() {
+            let d = (p - x).norm_squared();
+            if d < best.0 {
+                best = (d, i);
+            }
+        }
+        best.1
+    }
+
+    /// Spread a total force over particles in proportion to their volume, the traction
+    /// equivalent of eq. 7.31 with eq. 8.3: Σ t̄ h̄ v = ∫ t̄ da.
+    pub fn add_traction(&mut self, particles: &[usize], total_force: SVector<f64, D>) {
+        let volume: f64 = particles.iter().map(|&p| self.particles.volume0[p]).sum();
+        for &p in particles {
+            self.particles.applied_force[p] += total_force * (self.particles.volume0[p] / volume);
+        }
+    }
+
+    /// Advance one time step: the stages of the scheme in order.
+    pub fn step(&mut self) -> Result<(), SimulationError> {
+        for &stage in self.settings.scheme.stages() {
+            self.run_stage(stage)?;
+        }
+        Ok(())
+    }
+
+    fn run_stage(&mut self, stage: Stage) -> Result<(), SimulationError> {
+        use scatter::Transfer;
+        match stage {
+            Stage::FitGrid => self.refit_grid()?,
+            Stage::ExternalForces => self.external_forces(),
+            Stage::MapMassMomentumForce => self.scatter(Transfer::ALL),
+            Stage::MapMassMomentum => self.scatter(Transfer::MASS_MOMENTUM),
+            Stage::MapForce => self.scatter(Transfer::FORCE),
+            Stage::MapMomentum => self.scatter(Transfer::MOMENTUM),
+            Stage::SolveMomentum => self.solve_grid(true),
+            Stage::NodalVelocity => self.solve_grid(false),
+            Stage::UpdateVelocity => self.gather(true, false)?,
+            Stage::UpdateStress => self.gather(false, true)?,
+            Stage::UpdateVelocityAndStress => self.gather(true, true)?,
+            Stage::Advect => {
+                self.advect()?;
+                self.time += self.dt;
+                self.step += 1;
+            }
+            Stage::CheckEnergy => self.check_energy()?,
+        }
+        Ok(())
+    }
+
+    fn failure(&self, particle: Option<usize>, cause: Cause) -> SimulationError {
+        SimulationError {
+            step: self.step,
+            time: self.time,
+            particle,
+            cause,
+        }
+    }
+
+    /// Run until `t_end`, reporting the state to every observer after every step (the
+    /// initial state is the caller's to report).
+    pub fn run_until(
+        &mut self,
+        t_end: f64,
+        observers: &mut [&mut dyn Observer<D>],
+    ) -> Result<(), RunError> {
+        while self.time < t_end - 0.5 * self.dt {
+            self.step()?;
+            for o in observers.iter_mut() {
+                o.observe(self)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A run stops on a simulation failure or an output error.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    #[error(transparent)]
+    Simulation(#[from] SimulationError),
+    #[error("writing output: {0}")]
+    Io(#[from] std::io::Error),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::discretize::{fill, Shape};
+    use crate::kinematics::Kinematics;
+    use materials::NeoHooke;
+    use nalgebra::Matrix3;
+    use nalgebra::Vector3;
+
+    /// A soft cube dropped with spin onto a rough plane, 200 steps: every particle's state.
+    fn run() -> (Vec<SVector<f64, 3>>, Vec<Matrix3<f64>>, f64) {
+        let mut settings = Settings::<3>::new(Kinematics::Solid, 0.1);
+        settings.body_force = Vector3::new(0.0, 0.0, -10.0);
+        settings.grid_shift = Some((Vector3::repeat(0.02), 7));
+        settings.damping = 1.0;
+        let mut s = Solver::new(settings);
+        let cube = fill(
+            &Shape::Box {
+                min: Vector3::new(0.0, 0.0, 0.02),
+                max: Vector3::repeat(1.0),
+            },
+            Vector3::repeat(0.05),
+            Kinematics::Solid,
+        );
+        s.add_body(
+            "cube",
+            Arc::new(NeoHooke::new(1e4, 0.3, 100.0)),
+            &cube,
+            Vector3::new(0.3, 0.0, -0.5),
+        );
+        for i in 0..s.particles.len() {
+            let x = s.particles.position[i];
+            s.particles.velocity[i] +=
+                Vector3::new(0.0, 0.0, 1.0).cross(&(x - Vector3::repeat(0.5)));
+        }
+        s.add_rigid_body(RigidBody::half_space(
+            "floor",
+            Vector3::zeros(),
+            Vector3::z(),
+            1e4,
+            0.3,
+        ));
+        s.initialize();
+        for _ in 0..200 {
+            s.step().unwrap();
+        }
+        (
+            s.particles.position.clone(),
+            s.particles.stress.clone(),
+            s.energies.internal,
+        )
+    }
+
+    /// Fastest normal speed into the wall of the bottom layer of a block that hits the
+    /// wall y = 0 at 1 m/s, after 15 steps (the wave from the wall is 0.04 m up the block).
+    fn bottom_layer_speed(bc: VelocityBc<2>) -> f64 {
+        let h = 0.01;
+        let mut s = Solver::new(Settings::<2>::new(Kinematics::PlaneStrain, h));
+        let block = fill(
+            &Shape::Box {
+                min: nalgebra::Vector2::zeros(),
+                max: nalgebra::Vector2::new(0.1, 0.1),
+            },
+            nalgebra::Vector2::repeat(h / 2.0),
+            Kinematics::PlaneStrain,
+        );
+        s.add_body(
+            "block",
+            Arc::new(NeoHooke::new(2e11, 0.3, 7850.0)),
+            &block,
+            nalgebra::Vector2::new(0.0, -1.0),
+        );
+        s.velocity_bcs.push(bc);
+        s.initialize();
+        for _ in 0..15 {
+            s.step().unwrap();
+        }
+        let p = &s.particles;
+        (0..p.len())
+            .filter(|&i| p.reference_position[i][1] < h / 2.0)
+            .map(|i| -p.velocity[i][1])
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    #[test]
+    fn the_layer_that_hits_a_one_sided_wall_stops() {
+        let one_sided = bottom_layer_speed(VelocityBc::wall(1, 0.0, true));
+        let mut fixed = VelocityBc::wall(1, 0.0, true);
+        fixed.one_sided = false;
+        let eq_7_28 = bottom_layer_speed(fixed);
+        eprintln!("bottom layer speed into the wall: one-sided {one_sided:.3e}, eq. 7.28 {eq_7_28:.3e} m/s");
+        // with eq. 7.28 the points keep most of their 1 m/s (measured 0.68); with the wall's
+        // reaction they move at the grid's smeared wave-front speed (measured 0.06; the
+        // exact value behind the front is 0)
+        assert!(eq_7_28 > 0.5, "{eq_7_28}");
+        assert!(one_sided < 0.1, "{one_sided}");
+    }
+
+    #[test]
+    fn results_do_not_depend_on_the_thread_count() {
+        let with = |threads| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(run)
+        };
+        let (one, two, four) = (with(1), with(2), with(4));
+        assert!(one.0 == two.0 && one.0 == four.0, "positions differ");
+        assert!(one.1 == two.1 && one.1 == four.1, "stresses differ");
+        assert_eq!(one.2.to_bits(), two.2.to_bits());
+        assert_eq!(one.2.to_bits(), four.2.to_bits());
+    }
+}

@@ -1,0 +1,183 @@
+//! Particle-to-grid transfer (algorithm 9), in parallel without locks: particles are
+//! bucketed into slabs of cells along the last axis by their first stencil node, slabs of
+//! one colour (even or odd) touch disjoint node ranges (the slab width is at least the
+//! kernel's support), and each slab adds its particles in index order, so the sums do not
+//! depend on the number of threads.
+
+use super::Solver;
+use crate::grid::Node;
+use crate::kinematics::Kinematics;
+use crate::particles::Particles;
+use crate::weights::WeightCache;
+use nalgebra::{SMatrix, SVector};
+use rayon::prelude::*;
+
+/// Which nodal quantities a transfer maps.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Transfer {
+    mass: bool,
+    momentum: bool,
+    force: bool,
+}
+
+impl Transfer {
+    pub const ALL: Self = Transfer {
+        mass: true,
+        momentum: true,
+        force: true,
+    };
+    pub const MASS_MOMENTUM: Self = Transfer {
+        force: false,
+        ..Self::ALL
+    };
+    pub const FORCE: Self = Transfer {
+        mass: false,
+        momentum: false,
+        force: true,
+    };
+    pub const MOMENTUM: Self = Transfer {
+        mass: false,
+        momentum: true,
+        force: false,
+    };
+}
+
+/// Particles bucketed into slabs of `width` node rows along the last axis.
+struct Slabs {
+    width: usize,
+    count: usize,
+}
+
+impl<const D: usize> Solver<D> {
+    /// Particle-to-grid transfer of the chosen quantities (algorithm 9), lock-free and
+    /// deterministic (see the module notes).
+    pub(super) fn scatter(&mut self, t: Transfer) {
+        self.clear_nodes(t);
+        let slabs = self.bucket_by_slab();
+        let last = D - 1;
+        let stride = self.grid.strides[last];
+        let support = self.scratch.weights.support();
+        for colour in 0..2 {
+            let mut parts: Vec<(usize, usize, &mut [Node<D>])> = Vec::new();
+            let mut rest: &mut [Node<D>] = &mut self.grid.nodes;
+            let mut consumed = 0;
+            for k in (colour..slabs.count).step_by(2) {
+                // node rows of slab k's stencils: k w .. (k + 1) w + support − 2
+                let start = k * slabs.width * stride;
+                let end =
+                    (((k + 1) * slabs.width + support - 1) * stride).min(consumed + rest.len());
+                let tail = std::mem::take(&mut rest);
+                let (_, tail) = tail.split_at_mut(start - consumed);
+                let (mine, tail) = tail.split_at_mut(end - start);
+                rest = tail;
+                consumed = end;
+                parts.push((k, start, mine));
+            }
+            let s = &self.scratch;
+            let sources = Sources {
+                p: &self.particles,
+                force: &s.force,
+                weights: &s.weights,
+                body_force: self.settings.body_force,
+                axisymmetric: self.settings.kinematics == Kinematics::Axisymmetric,
+            };
+            parts.into_par_iter().for_each(|(k, start, nodes)| {
+                for &i in &s.order[s.slab_start[k]..s.slab_start[k + 1]] {
+                    sources.add(i as usize, t, start, nodes);
+                }
+            });
+        }
+    }
+
+    fn clear_nodes(&mut self, t: Transfer) {
+        self.grid.nodes.par_iter_mut().for_each(|n| {
+            if t.mass {
+                n.mass = 0.0;
+                n.heaviest = 0.0;
+            }
+            if t.momentum {
+                n.momentum = SVector::zeros();
+            }
+            if t.force {
+                n.force = SVector::zeros();
+            }
+        });
+    }
+
+    /// Stable counting sort of the particles by the slab of their first stencil node.
+    /// Same-colour slabs are a slab apart, so they touch disjoint nodes when the width is
+    /// at least support − 1 node rows.
+    fn bucket_by_slab(&mut self) -> Slabs {
+        let last = D - 1;
+        let s = &mut self.scratch;
+        let support = s.weights.support();
+        let rows = self.grid.dims[last] + 1 - support;
+        let width = rows.div_ceil(32).max(support - 1).max(1);
+        let count = rows.div_ceil(width);
+        let stride = self.grid.strides[last];
+        let weights = &s.weights;
+        let slab_of = |i: usize| weights.first(i) / stride / width;
+        let n = self.particles.len();
+        s.slab_start.clear();
+        s.slab_start.resize(count + 1, 0);
+        for i in 0..n {
+            s.slab_start[slab_of(i) + 1] += 1;
+        }
+        for k in 0..count {
+            s.slab_start[k + 1] += s.slab_start[k];
+        }
+        s.order.resize(n, 0);
+        let mut next = s.slab_start.clone();
+        for i in 0..n {
+            let k = slab_of(i);
+            s.order[next[k]] = i as u32;
+            next[k] += 1;
+        }
+        Slabs { width, count }
+    }
+}
+
+/// What the particles contribute to the nodes.
+struct Sources<'a, const D: usize> {
+    p: &'a Particles<D>,
+    /// Applied, spring and contact force on each particle [N].
+    force: &'a [SVector<f64, D>],
+    weights: &'a WeightCache<D>,
+    body_force: SVector<f64, D>,
+    axisymmetric: bool,
+}
+
+impl<const D: usize> Sources<'_, D> {
+    /// Add particle `i`'s share to `nodes`, the slab's node range starting at node `start`.
+    #[inline]
+    fn add(&self, i: usize, t: Transfer, start: usize, nodes: &mut [Node<D>]) {
+        let p = self.p;
+        let w = self.weights.stencil(i);
+        let m = p.mass[i];
+        let mv = p.velocity[i] * m;
+        let f_ext = self.force[i] + self.body_force * m;
+        let vol = p.volume[i];
+        let sigma: SMatrix<f64, D, D> = p.stress[i].fixed_view::<D, D>(0, 0).into_owned() * vol;
+        let hoop = if self.axisymmetric {
+            p.stress[i][(2, 2)] * vol / p.position[i][0]
+        } else {
+            0.0
+        };
+        for (c, offset) in w.offsets.iter().enumerate() {
+            let node = &mut nodes[w.first + offset - start];
+            let n = w.n[c];
+            if t.mass {
+                node.mass += n * m;
+                node.heaviest = node.heaviest.max(m);
+            }
+            if t.momentum {
+                node.momentum += mv * n;
+            }
+            if t.force {
+                let mut f = f_ext * n - sigma * w.grad[c];
+                f[0] -= hoop * n;
+                node.force += f;
+            }
+        }
+    }
+}

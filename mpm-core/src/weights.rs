@@ -1,0 +1,133 @@
+//! Shape-function weights cached per particle for one step (Karamelo's per-particle
+//! weight cache, NairnMPM's node lists built once per step): after the grid is refitted,
+//! every particle's stencil (first node number) and its weights N_I and gradients ∇N_I
+//! [1/m] are evaluated once, in parallel, and then read by every transfer of the step
+//! (USF and MUSL map to the grid twice and back twice; positions do not move until the
+//! step's last stage).
+
+use crate::grid::Grid;
+use crate::shape::Kernel;
+use nalgebra::SVector;
+use rayon::prelude::*;
+
+/// Weights of every particle's stencil for the current grid.
+#[derive(Debug, Clone, Default)]
+pub struct WeightCache<const D: usize> {
+    /// Nodes per axis the kernel reaches.
+    support: usize,
+    /// Stencil nodes per particle.
+    nodes: usize,
+    /// Node-number offsets of the stencil nodes from the first one (x fastest).
+    offsets: Vec<usize>,
+    /// Node number of each particle's first stencil node.
+    first: Vec<usize>,
+    /// N_I, `nodes` per particle.
+    n: Vec<f64>,
+    /// ∇N_I [1/m], `nodes` per particle.
+    grad: Vec<SVector<f64, D>>,
+}
+
+/// One particle's stencil: node numbers are `first + offsets[k]`.
+pub struct Stencil<'a, const D: usize> {
+    pub first: usize,
+    pub offsets: &'a [usize],
+    pub n: &'a [f64],
+    pub grad: &'a [SVector<f64, D>],
+}
+
+impl<const D: usize> WeightCache<D> {
+    /// Evaluate kernel `K` at every position on `grid` (fitted to hold the stencils).
+    pub fn compute<K: Kernel<D>>(&mut self, grid: &Grid<D>, positions: &[SVector<f64, D>]) {
+        let nodes = K::NODES;
+        self.nodes = nodes;
+        self.support = K::SUPPORT;
+        self.offsets = stencil_offsets(grid, K::SUPPORT);
+        let pad: usize = grid.strides.iter().map(|s| s * K::PAD).sum();
+        self.first.resize(positions.len(), 0);
+        self.n.resize(positions.len() * nodes, 0.0);
+        self.grad.resize(positions.len() * nodes, SVector::zeros());
+        positions
+            .par_iter()
+            .zip(self.first.par_iter_mut())
+            .zip(self.n.par_chunks_mut(nodes))
+            .zip(self.grad.par_chunks_mut(nodes))
+            .for_each(|(((x, first), n), grad)| {
+                let (corner, xi) = grid.locate(x);
+                *first = corner - pad;
+                K::evaluate(&xi, &grid.inv_spacing, n, grad);
+            });
+    }
+
+    /// The stencil of particle `i`.
+    #[inline]
+    pub fn stencil(&self, i: usize) -> Stencil<'_, D> {
+        let range = i * self.nodes..(i + 1) * self.nodes;
+        Stencil {
+            first: self.first[i],
+            offsets: &self.offsets,
+            n: &self.n[range.clone()],
+            grad: &self.grad[range],
+        }
+    }
+
+    /// Nodes per axis the kernel of the last `compute` reaches.
+    pub fn support(&self) -> usize {
+        self.support
+    }
+
+    /// Node number of particle `i`'s first stencil node.
+    #[inline]
+    pub fn first(&self, i: usize) -> usize {
+        self.first[i]
+    }
+
+    /// Bytes kept per particle by a kernel of `nodes` stencil nodes.
+    pub const fn bytes_per_particle(nodes: usize) -> usize {
+        std::mem::size_of::<usize>()
+            + nodes * (std::mem::size_of::<f64>() + std::mem::size_of::<SVector<f64, D>>())
+    }
+}
+
+/// Node-number offsets of a `support`ᴰ stencil from its first node (x fastest).
+fn stencil_offsets<const D: usize>(grid: &Grid<D>, support: usize) -> Vec<usize> {
+    let count = support.pow(D as u32);
+    (0..count)
+        .map(|k| {
+            let mut rest = k;
+            let mut offset = 0;
+            for stride in grid.strides {
+                offset += (rest % support) * stride;
+                rest /= support;
+            }
+            offset
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape::{linear, Linear};
+    use nalgebra::Vector3;
+
+    #[test]
+    fn the_cache_holds_the_linear_weights_of_each_corner() {
+        let mut g = Grid::new(Vector3::new(0.5, 0.25, 1.0), Vector3::zeros());
+        g.fit([0, 0, 0], [3, 3, 3], 0, 2);
+        let x = vec![Vector3::new(0.6, 0.3, 2.2), Vector3::new(1.9, 0.01, 0.5)];
+        let mut cache = WeightCache::default();
+        cache.compute::<Linear>(&g, &x);
+        let offsets = g.corner_offsets();
+        for (i, x) in x.iter().enumerate() {
+            let (base, xi) = g.locate(x);
+            let w = linear(&xi, &g.inv_spacing);
+            let s = cache.stencil(i);
+            assert_eq!(s.first, base);
+            for (k, offset) in offsets.iter().enumerate() {
+                assert_eq!(s.first + s.offsets[k], base + offset);
+                assert_eq!(s.n[k], w.n[k]);
+                assert_eq!(s.grad[k], w.grad[k]);
+            }
+        }
+    }
+}
