@@ -9,6 +9,7 @@ pub mod cli;
 pub mod experiment;
 pub mod export;
 pub mod heatmap;
+pub mod mpm_verify;
 pub mod shpb;
 
 pub use experiment::{load_experiment, Experiment, ExperimentError};

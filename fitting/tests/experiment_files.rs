@@ -1,6 +1,8 @@
 //! Experiment files: unit conversion against hand-computed SI values, and one test per
 //! error kind checking that the message names the file, line and column.
 
+mod common;
+
 use fitting::experiment::{
     load_experiment, Experiment, ExperimentError, ShpbExperiment, TensileExperiment,
 };
@@ -221,7 +223,7 @@ fn shpb_volts_without_bridge_is_an_error() {
 fn real_304l_file_reads_as_it_is() {
     let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data/tension/304L");
     if !data.is_dir() {
-        println!("skipped: {} not found", data.display());
+        common::skip(&data.display().to_string());
         return;
     }
     let file = "rate_0.01__SML4188-Ring1-17_Pull_0.01.csv";
@@ -262,7 +264,7 @@ fn real_304l_file_reads_as_it_is() {
 fn shipped_experiment_files_load() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     if !root.join("../shared/data").is_dir() {
-        println!("skipped: ../shared/data not found");
+        common::skip("../shared/data");
         return;
     }
     let header_value = |text: &str, key: &str| -> f64 {

@@ -2,13 +2,15 @@
 //! strain rate, plateau stress and equilibrium ratio per record, and agreement of the
 //! strain rate within 10 % for the tests run at similar impact levels (1-2, 3-4, 5-6).
 
+mod common;
+
 use fitting::experiment::ShpbExperiment;
 use fitting::shpb::{analyze, steel_945_experiments, ShpbAnalysis};
 
 #[test]
 fn paired_tests_agree_on_strain_rate() {
     let Some(files) = steel_945_experiments() else {
-        println!("skipped: ../shared/data/shpb/steel_945 not found");
+        common::skip("../shared/data/shpb/steel_945");
         return;
     };
     let analyses: Vec<ShpbAnalysis> = files

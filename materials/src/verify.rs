@@ -71,6 +71,11 @@ impl CaseResult {
 }
 
 impl CaseResult {
+    /// A value reported without a reference or a verdict (its reference column reads NaN).
+    pub fn reported(name: impl Into<String>, measured: f64) -> Self {
+        Self::info(name, measured, f64::NAN)
+    }
+
     /// A value reported against its reference without a pass/fail verdict.
     pub fn info(name: impl Into<String>, measured: f64, reference: f64) -> Self {
         CaseResult {

@@ -6,13 +6,18 @@
 //! back (USL, USF or MUSL). Plane strain, axisymmetric (D = 2) and 3D share one
 //! implementation through the const generic dimension `D`. Rigid bodies act through
 //! penalty contact with Coulomb friction. SI units throughout.
+//!
+//! A step is a list of named stages (`solver::scheme`); weights come from a `shape::Kernel`
+//! once per step (`weights`); motions and conditions follow `TimeSignal`s; outputs and
+//! fits read the run through `observer::Observer`; `Template` runs one discretized model
+//! with many material parameter sets. The verification catalogue lives with the
+//! application (`fitting::mpm_verify`).
 
 pub mod boundary;
 pub mod contact;
 pub mod discretize;
 pub mod failure;
 pub mod grid;
-pub mod integrators;
 pub mod kinematics;
 pub mod material_block;
 pub mod observer;
@@ -43,4 +48,3 @@ pub mod output;
 pub mod results;
 pub mod run;
 pub mod scene;
-pub mod verify;

@@ -10,7 +10,7 @@ use crate::observer::{Every, Observer};
 use crate::output::{HistoryWriter, SnapshotWriter};
 use crate::results::{self, NamedResult, RestTracker};
 use crate::scene::{Scene, Simulation};
-use crate::solver::{RunError, Solver};
+use crate::solver::{RunError, Solver, TimeStepChange};
 use crate::timestep::TimeStep;
 use materials::limits::TIME_STEPS;
 use std::path::Path;
@@ -18,6 +18,8 @@ use std::path::Path;
 #[derive(Debug)]
 pub struct RunSummary {
     pub time_step: TimeStep,
+    /// Δt changes during the run (`solver::TimeStepChange`).
+    pub time_step_changes: Vec<TimeStepChange>,
     pub steps: usize,
     pub particles: usize,
     pub failure: Option<SimulationError>,
@@ -110,6 +112,7 @@ fn run<const D: usize>(
     results::write_csv(&dir.join("results.csv"), &results)?;
     Ok(RunSummary {
         time_step,
+        time_step_changes: solver.time_step_changes.clone(),
         steps: solver.step,
         particles: solver.particles.len(),
         failure,

@@ -44,6 +44,9 @@ pub fn run(args: Args) -> Result<()> {
     .with_context(|| format!("writing output to {}", out.display()))?;
     bar.finish();
     println!("{} particles, {}", summary.particles, summary.time_step);
+    for change in &summary.time_step_changes {
+        println!("time step: {change}");
+    }
     println!(
         "{} steps; history, snapshots, results.csv and chart in {}",
         summary.steps,

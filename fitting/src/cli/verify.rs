@@ -20,6 +20,9 @@ pub struct Args {
     /// Material parameter folder.
     #[arg(long, default_value = "data/materials")]
     pub materials: PathBuf,
+    /// Fail when the rows on the shared real data (../shared/data) did not run.
+    #[arg(long)]
+    pub require_data: bool,
     /// Also write every row (case, measured and reference to full precision, result) to
     /// this CSV file, to compare two builds value by value.
     #[arg(long)]
@@ -96,7 +99,7 @@ fn iso_error_charts(materials: &Path, out: &Path) -> Result<()> {
 /// Bardenhagen's bar (2002): kinetic, strain (stress work) and total energy of USL, USF
 /// and MUSL side by side, the energy behaviour the thesis compares in chapter 2.
 fn bar_energy_chart(out: &Path) -> Result<()> {
-    use mpm_core::verify::vibration;
+    use crate::mpm_verify::vibration;
     use mpm_core::Scheme;
     let mut chart = LineChart::new(
         "Continuum bar (Bardenhagen 2002), 25 cells: energy per update scheme",
@@ -138,7 +141,7 @@ pub fn run(args: Args) -> Result<()> {
     let mut cases = studies::verify_cases(&args.materials, args.full)?;
     cases.extend(crate::shpb::verify_cases());
     cases.extend(crate::fit::verify::verify_cases());
-    cases.extend(mpm_core::verify::verify_cases(args.full));
+    cases.extend(crate::mpm_verify::verify_cases(args.full));
     println!(
         "{:<60} {:>14} {:>14} {:>12} result",
         "case", "measured", "reference", "tolerance"
@@ -177,6 +180,9 @@ pub fn run(args: Args) -> Result<()> {
                 .collect::<Vec<_>>()
                 .join(", ")
         );
+        if args.require_data {
+            bail!("--require-data: the real-data rows did not run");
+        }
     }
     if failed > 0 {
         bail!("{failed} verification case(s) failed");

@@ -193,7 +193,7 @@ mod tests {
 
     #[test]
     fn errors_name_the_field() {
-        let dir = std::env::temp_dir().join("mpw_scene_test");
+        let dir = std::env::temp_dir().join(format!("mpw_scene_test-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("bad.toml");
         let text = std::fs::read_to_string(scenes().join("colliding_disks.toml")).unwrap();
@@ -229,7 +229,7 @@ mod tests {
 
     #[test]
     fn walls_need_a_side_and_do_not_move_with_the_grid_shift() {
-        let dir = std::env::temp_dir().join("mpw_scene_wall_test");
+        let dir = std::env::temp_dir().join(format!("mpw_scene_wall_test-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("bad.toml");
         let text = axisymmetric_taylor_text();
@@ -260,7 +260,7 @@ mod tests {
         }) {
             assert!((m / bar - 1.0).abs() < 1e-10, "{m} vs {bar}");
         }
-        let dir = std::env::temp_dir().join("mpw_scene_axis_test");
+        let dir = std::env::temp_dir().join(format!("mpw_scene_axis_test-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("bad.toml");
         let text = axisymmetric_taylor_text();
@@ -275,15 +275,24 @@ mod tests {
 
     #[test]
     fn a_scene_runs_and_writes_history_and_snapshots() {
-        let dir = std::env::temp_dir().join("mpw_run_test");
+        let dir = std::env::temp_dir().join(format!("mpw_run_test-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         let mut scene = load(&scenes().join("single_particle.toml")).unwrap();
         scene.end = 1.0;
         let summary = crate::run::run_scene(scene, &dir, |_| {}, |_, _| {}).unwrap();
         assert!(summary.failure.is_none());
-        assert_eq!(summary.steps, 63);
+        // the run ends at the step nearest to t_end = 1 s, and the history has a header,
+        // the initial state and one row per step (history_every = 1)
+        let steps = (1.0 / summary.time_step.dt).round() as usize;
+        assert!(summary.time_step_changes.is_empty());
+        assert_eq!(summary.steps, steps);
         let history = std::fs::read_to_string(dir.join("history.csv")).unwrap();
-        assert_eq!(history.lines().count(), 1 + 1 + 63);
+        assert_eq!(history.lines().count(), 1 + 1 + steps);
+        assert!(
+            history.starts_with("t [s],kinetic [J],"),
+            "{}",
+            &history[..40]
+        );
         let snapshot = std::fs::read(dir.join("snapshot_00010.vtk")).unwrap();
         assert!(snapshot.starts_with(b"# vtk DataFile"));
     }
@@ -293,7 +302,8 @@ mod tests {
     /// thrown 1e12 m away (2e13 cells) stops the run instead of allocating the grid.
     #[test]
     fn sizes_from_a_scene_are_bounded_before_allocation() {
-        let dir = std::env::temp_dir().join("mpw_scene_limits_test");
+        let dir =
+            std::env::temp_dir().join(format!("mpw_scene_limits_test-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("bad.toml");

@@ -10,13 +10,7 @@ impl<const D: usize> Solver<D> {
     /// Choose Δt (eq. 7.22-7.23 and spring stability) and prepare the run.
     pub fn initialize(&mut self) -> TimeStep {
         let n = self.particles.len();
-        let mut speed: f64 = 0.0;
-        for b in &self.blocks {
-            let c = b.wave_speed();
-            for p in b.range.clone() {
-                speed = speed.max(c + self.particles.velocity[p].norm());
-            }
-        }
+        let speed = self.max_signal_speed();
         let lightest = self
             .particles
             .mass

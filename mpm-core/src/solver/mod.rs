@@ -17,10 +17,12 @@ mod initialize;
 mod scatter;
 mod scheme;
 mod settings;
+mod time_step;
 
 pub use energies::Energies;
 pub use scheme::{Scheme, Stage};
 pub use settings::Settings;
+pub use time_step::TimeStepChange;
 
 use crate::boundary::{SpringBc, VelocityBc};
 use crate::contact::ContactState;
@@ -83,6 +85,8 @@ pub struct Solver<const D: usize> {
     pub step: usize,
     pub dt: f64,
     pub energies: Energies,
+    /// Δt changes during the run (module `time_step`).
+    pub time_step_changes: Vec<TimeStepChange>,
     shift: Option<GridShift<D>>,
     watchdog: Option<Watchdog<D>>,
     /// Nodes lighter than this fraction of the heaviest point that reaches them are not
@@ -109,6 +113,7 @@ impl<const D: usize> Solver<D> {
             step: 0,
             dt: 0.0,
             energies: Energies::default(),
+            time_step_changes: Vec::new(),
             shift,
             watchdog: None,
             mass_cutoff: 0.0,
@@ -197,6 +202,7 @@ impl<const D: usize> Solver<D> {
                 self.step += 1;
             }
             Stage::CheckEnergy => self.check_energy()?,
+            Stage::CheckTimeStep => self.recheck_time_step(),
         }
         Ok(())
     }

@@ -50,6 +50,9 @@ pub enum Stage {
     Advect,
     /// Energy balance and blow-up checks.
     CheckEnergy,
+    /// The CFL estimate with the current velocities; Δt reduced below it (module
+    /// `time_step`).
+    CheckTimeStep,
 }
 
 impl Scheme {
@@ -65,6 +68,7 @@ impl Scheme {
                 UpdateVelocityAndStress,
                 Advect,
                 CheckEnergy,
+                CheckTimeStep,
             ],
             Scheme::Usf => &[
                 FitGrid,
@@ -77,6 +81,7 @@ impl Scheme {
                 UpdateVelocity,
                 Advect,
                 CheckEnergy,
+                CheckTimeStep,
             ],
             Scheme::Musl => &[
                 FitGrid,
@@ -89,6 +94,7 @@ impl Scheme {
                 UpdateStress,
                 Advect,
                 CheckEnergy,
+                CheckTimeStep,
             ],
         }
     }
@@ -110,6 +116,7 @@ impl fmt::Display for Stage {
             Stage::UpdateVelocityAndStress => "update v, F, σ",
             Stage::Advect => "advect",
             Stage::CheckEnergy => "check energy",
+            Stage::CheckTimeStep => "check time step",
         })
     }
 }
@@ -146,14 +153,14 @@ mod tests {
             assert_eq!(count(Stage::SolveMomentum), 1, "{scheme}");
             assert_eq!(s[..2], [Stage::FitGrid, Stage::ExternalForces], "{scheme}");
             assert_eq!(
-                s[s.len() - 2..],
-                [Stage::Advect, Stage::CheckEnergy],
+                s[s.len() - 3..],
+                [Stage::Advect, Stage::CheckEnergy, Stage::CheckTimeStep],
                 "{scheme}"
             );
         }
         assert_eq!(
             Scheme::Usl.to_string(),
-            "USL: fit grid, external forces, map m, p, f, solve momentum, update v, F, σ, advect, check energy"
+            "USL: fit grid, external forces, map m, p, f, solve momentum, update v, F, σ, advect, check energy, check time step"
         );
     }
 }

@@ -8,11 +8,11 @@
 //!   v0 sin(πx/2L), v0 = 0.1 m/s; first mode ω1 = π/(2L) √(E/ρ) (plane strain, ν = 0, one
 //!   row of points at the centre line of one row of cells).
 
-use crate::boundary::{NodeSet, VelocityBc};
-use crate::discretize::{fill, Shape};
-use crate::kinematics::Kinematics;
-use crate::solver::{Scheme, Settings, Solver};
 use materials::NeoHooke;
+use mpm_core::boundary::{NodeSet, VelocityBc};
+use mpm_core::discretize::{fill, Shape};
+use mpm_core::kinematics::Kinematics;
+use mpm_core::solver::{Scheme, Settings, Solver};
 use nalgebra::{SVector, Vector2, Vector3};
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -41,7 +41,7 @@ pub struct SingleParticle {
     pub shear_ratio: f64,
     /// The failure that ended the run early, if any (the off-centre point's cell shears
     /// until F inverts).
-    pub failure: Option<crate::SimulationError>,
+    pub failure: Option<mpm_core::SimulationError>,
 }
 
 /// Table 8.1 in 3D; `centered` places the point at (0.5, 0.5, 0.5), otherwise at

@@ -33,11 +33,11 @@
 //! shrink by ≈ 3.7× per halving of s (second order), so the sequence tends to ≈ 10.55 mm:
 //! 1.2 % below the thesis MPM value at n = 16 and 0.2 % below the FEM value.
 
-use crate::boundary::{NodeSet, VelocityBc};
-use crate::discretize::{fill, Shape};
-use crate::kinematics::Kinematics;
-use crate::solver::{Settings, Solver};
 use materials::NeoHooke;
+use mpm_core::boundary::{NodeSet, VelocityBc};
+use mpm_core::discretize::{fill, Shape};
+use mpm_core::kinematics::Kinematics;
+use mpm_core::solver::{Settings, Solver};
 use nalgebra::{SVector, Vector2, Vector3};
 use std::sync::Arc;
 use std::time::Instant;
@@ -147,7 +147,7 @@ fn load_factor(t: f64) -> f64 {
 }
 
 /// Relax the membrane with `n` points per cell for `t_end` [s].
-pub fn relax(n: usize, t_end: f64) -> Result<CookResult, crate::SimulationError> {
+pub fn relax(n: usize, t_end: f64) -> Result<CookResult, mpm_core::SimulationError> {
     let clock = Instant::now();
     let mut s = membrane(n);
     let ts = s.initialize();
@@ -179,7 +179,7 @@ pub fn relax(n: usize, t_end: f64) -> Result<CookResult, crate::SimulationError>
 }
 
 /// The convergence table: one relaxed run per refinement `n` (points per cell per axis).
-pub fn convergence(levels: &[usize]) -> Result<Vec<CookResult>, crate::SimulationError> {
+pub fn convergence(levels: &[usize]) -> Result<Vec<CookResult>, mpm_core::SimulationError> {
     levels.iter().map(|&n| relax(n, RELAXATION_TIME)).collect()
 }
 
@@ -208,7 +208,7 @@ pub fn table(rows: &[CookResult]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{load, Simulation};
+    use mpm_core::scene::{load, Simulation};
 
     #[test]
     fn corner_displacement_converges_towards_the_thesis_value() {

@@ -6,10 +6,10 @@
 //! in 2D). Measured: contact start (lower body's momentum 1 % below its initial value),
 //! total momentum drift, energy error at the end.
 
-use crate::discretize::{fill, Shape};
-use crate::kinematics::Kinematics;
-use crate::solver::{Settings, Solver};
 use materials::NeoHooke;
+use mpm_core::discretize::{fill, Shape};
+use mpm_core::kinematics::Kinematics;
+use mpm_core::solver::{Settings, Solver};
 use nalgebra::SVector;
 use std::sync::Arc;
 

@@ -24,15 +24,15 @@
 //! Zerilli & Armstrong (1987, J. Appl. Phys. 61, 1816) in B. Banerjee's collection
 //! github.com/bbanerjee/HighRateExptData, `TaylorData/DAT/CuZerilli.dat`. SI units.
 
-use crate::discretize::{fill, Shape};
-use crate::failure::SimulationError;
-use crate::kinematics::Kinematics;
-use crate::results::largest;
-use crate::solver::{Scheme, Settings, Solver};
-use crate::NodeSet;
-use crate::VelocityBc;
 use materials::verify::CaseResult;
 use materials::{load_material, Material};
+use mpm_core::discretize::{fill, Shape};
+use mpm_core::failure::SimulationError;
+use mpm_core::kinematics::Kinematics;
+use mpm_core::results::largest;
+use mpm_core::solver::{Scheme, Settings, Solver};
+use mpm_core::NodeSet;
+use mpm_core::VelocityBc;
 use nalgebra::SVector;
 use std::path::Path;
 use std::sync::Arc;

@@ -27,14 +27,14 @@
 //! y_tip = min y of the disk's points − s/2 (y_tip(0) is the target surface), and the bullet's kinetic energy ½ Σ m v² [J per metre of
 //! thickness]. SI units.
 
-use crate::discretize::{fill, Shape};
-use crate::failure::SimulationError;
-use crate::kinematics::Kinematics;
-use crate::solver::{Scheme, Settings, Solver};
-use crate::sum::fixed_sum;
-use crate::{NodeSet, VelocityBc};
 use materials::verify::CaseResult;
 use materials::{load_material, Material};
+use mpm_core::discretize::{fill, Shape};
+use mpm_core::failure::SimulationError;
+use mpm_core::kinematics::Kinematics;
+use mpm_core::solver::{Scheme, Settings, Solver};
+use mpm_core::sum::fixed_sum;
+use mpm_core::{NodeSet, VelocityBc};
 use nalgebra::SVector;
 use std::path::Path;
 use std::sync::Arc;
@@ -173,20 +173,19 @@ pub fn cases(full: bool, out: &mut Vec<CaseResult>) {
     match plastic_impact(n, 80e-6) {
         Ok(r) => {
             let k0 = r.history[0].2;
-            let row = |t: f64| {
+            // the thesis shows these only in its figure: reported, not asserted
+            for t in [10e-6, 20e-6, 40e-6, 80e-6] {
                 let (_, d, k) = r.at(t);
-                format!("{:.0}µs {:.2}mm {:.1}%", t * 1e6, d * 1e3, 100.0 * k / k0)
-            };
-            out.push(CaseResult::holds(
-                format!(
-                    "{name}/depth, bullet K/K0 (reported): {}, {}, {}, {}",
-                    row(10e-6),
-                    row(20e-6),
-                    row(40e-6),
-                    row(80e-6)
-                ),
-                r.history.iter().all(|h| h.1.is_finite() && h.2.is_finite()),
-            ));
+                let us = t * 1e6;
+                out.push(CaseResult::reported(
+                    format!("{name}/depth at {us:.0} µs [m]"),
+                    d,
+                ));
+                out.push(CaseResult::reported(
+                    format!("{name}/bullet K/K0 at {us:.0} µs"),
+                    k / k0,
+                ));
+            }
             let (d40, d_end) = (r.at(40e-6).1, r.history.last().unwrap().1);
             out.push(CaseResult::at_most(
                 format!("{name}/depth-change-40us-to-end (thesis: none)"),

@@ -16,12 +16,12 @@
 //!   (a sticking or rolling cube stays below it) and the contact slip exceeds
 //!   `SLIDING_SLIP`.
 
-use crate::discretize::{fill, Shape};
-use crate::kinematics::Kinematics;
-use crate::rigid::{RigidBody, Rotation};
-use crate::solver::{Scheme, Settings, Solver};
 use materials::signal::TimeSignal;
 use materials::NeoHooke;
+use mpm_core::discretize::{fill, Shape};
+use mpm_core::kinematics::Kinematics;
+use mpm_core::rigid::{RigidBody, Rotation};
+use mpm_core::solver::{Scheme, Settings, Solver};
 use nalgebra::{SVector, Vector3};
 use std::sync::Arc;
 
@@ -35,7 +35,7 @@ pub struct LibraResult {
 }
 
 /// The libra with `per_edge` points along each cube edge (2 per cell).
-pub fn libra(penalty: f64, per_edge: usize) -> Result<LibraResult, crate::SimulationError> {
+pub fn libra(penalty: f64, per_edge: usize) -> Result<LibraResult, mpm_core::SimulationError> {
     let s = 1.0 / per_edge as f64;
     let mut settings = Settings::<3>::new(Kinematics::Solid, 2.0 * s);
     settings.thesis_scheme();
@@ -103,7 +103,7 @@ pub fn inclined_plate(
     mu: f64,
     per_edge: usize,
     t_end: f64,
-) -> Result<InclineResult, crate::SimulationError> {
+) -> Result<InclineResult, mpm_core::SimulationError> {
     let edge = 0.5;
     let s = edge / per_edge as f64;
     let mut settings = Settings::<3>::new(Kinematics::Solid, 0.2);

@@ -1,17 +1,20 @@
-//! The thesis verification benchmarks, each as a function that runs the case and returns
+//! The thesis MPM verification benchmarks (moved out of the mpm-core library: they are
+//! the application's catalogue, not the engine), each as a function that runs the case and returns
 //! the measured numbers; `verify_cases` turns them into `mpw verify` table rows (reduced
-//! sizes unless `full`).
+//! sizes unless `full`). The table runs once per CI run, as `mpw verify` (which fails on
+//! any failing row); the modules' unit tests keep small checks of their own.
 
 pub mod collision;
 pub mod cook;
 pub mod impact;
+pub mod integrators;
 pub mod rigid_contact;
 pub mod taylor;
 pub mod vibration;
 
-use crate::integrators::{Integrator, MassSpring};
-use crate::solver::Scheme;
+use integrators::{Integrator, MassSpring};
 use materials::verify::CaseResult;
+use mpm_core::solver::Scheme;
 
 /// Run every MPM verification case; `full` uses the thesis sizes where they differ.
 pub fn verify_cases(full: bool) -> Vec<CaseResult> {
@@ -112,12 +115,21 @@ pub fn verify_cases(full: bool) -> Vec<CaseResult> {
                     r.particles
                 );
                 if k > 0 {
-                    // converges from above: u_y falls, by less with every refinement
-                    let shrinks = k < 2 || (u[k] - u[k - 1]).abs() < (u[k - 1] - u[k - 2]).abs();
-                    out.push(CaseResult::holds(
-                        format!("{name}: falls by {:.3} mm", (u[k - 1] - u[k]) * 1e3),
-                        u[k] < u[k - 1] && shrinks,
-                    ));
+                    // converges from above: u_y falls, and from the third level on by less
+                    // than at the level before (two levels cannot show convergence)
+                    let fall = (u[k - 1] - u[k]) * 1e3;
+                    if k < 2 {
+                        out.push(CaseResult::holds(
+                            format!("{name}: falls by {fall:.3} mm"),
+                            u[k] < u[k - 1],
+                        ));
+                    } else {
+                        out.push(CaseResult::holds(
+                            format!("{name}: falls by {fall:.3} mm, less than before"),
+                            u[k] < u[k - 1]
+                                && (u[k] - u[k - 1]).abs() < (u[k - 1] - u[k - 2]).abs(),
+                        ));
+                    }
                 }
                 if k + 1 == rows.len() {
                     let tol = if full {
@@ -181,12 +193,9 @@ pub fn verify_cases(full: bool) -> Vec<CaseResult> {
             r.momentum_drift,
             1e-12,
         ));
-        out.push(CaseResult::holds(
-            format!(
-                "mpm/disks/dx{dx}/energy-ratio {:.3} (reported)",
-                r.energy_ratio
-            ),
-            r.energy_ratio.is_finite(),
+        out.push(CaseResult::reported(
+            format!("mpm/disks/dx{dx}/energy-ratio"),
+            r.energy_ratio,
         ));
     }
     if full {
@@ -281,16 +290,4 @@ pub fn verify_cases(full: bool) -> Vec<CaseResult> {
     // section 9.2: plastic impact of a steel disk into a 6061-T6 target
     impact::cases(full, &mut out);
     out
-}
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn reduced_verification_table_passes() {
-        let cases = super::verify_cases(false);
-        for c in &cases {
-            eprintln!("{c}");
-        }
-        assert!(cases.iter().all(|c| c.passed), "a verification case failed");
-    }
 }
