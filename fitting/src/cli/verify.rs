@@ -17,7 +17,8 @@ pub struct Args {
     /// Write the verification charts (PNG) into this folder.
     #[arg(long)]
     pub charts: Option<PathBuf>,
-    /// Material parameter folder.
+    /// Material parameter folder (every material and MPM case reads its materials here,
+    /// so a copied binary runs the table from anywhere).
     #[arg(long, default_value = "data/materials")]
     pub materials: PathBuf,
     /// Fail when the rows on the shared real data (../shared/data) did not run.
@@ -141,7 +142,7 @@ pub fn run(args: Args) -> Result<()> {
     let mut cases = studies::verify_cases(&args.materials, args.full)?;
     cases.extend(crate::shpb::verify_cases());
     cases.extend(crate::fit::verify::verify_cases());
-    cases.extend(crate::mpm_verify::verify_cases(args.full));
+    cases.extend(crate::mpm_verify::verify_cases(&args.materials, args.full));
     println!(
         "{:<60} {:>14} {:>14} {:>12} result",
         "case", "measured", "reference", "tolerance"

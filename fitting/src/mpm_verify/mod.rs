@@ -14,10 +14,29 @@ pub mod vibration;
 
 use integrators::{Integrator, MassSpring};
 use materials::verify::CaseResult;
+use materials::{load_material, Material};
 use mpm_core::solver::Scheme;
+use std::path::Path;
+use std::sync::Arc;
 
-/// Run every MPM verification case; `full` uses the thesis sizes where they differ.
-pub fn verify_cases(full: bool) -> Vec<CaseResult> {
+/// A material of the parameter folder `materials` (`mpw verify --materials`).
+fn material(materials: &Path, file: &str) -> Arc<dyn Material> {
+    let path = materials.join(file);
+    match load_material(&path) {
+        Ok(m) => Arc::new(m.model),
+        Err(e) => panic!("{e} (the verification cases read their materials from --materials)"),
+    }
+}
+
+/// The repository's parameter folder, for the modules' unit tests.
+#[cfg(test)]
+pub fn test_materials() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/materials")
+}
+
+/// Run every MPM verification case with the materials of the folder `materials`; `full`
+/// uses the thesis sizes where they differ.
+pub fn verify_cases(materials: &Path, full: bool) -> Vec<CaseResult> {
     let mut out = Vec::new();
 
     // chapter 5: mass-spring, Δt = 0.1, t = 50
@@ -285,9 +304,9 @@ pub fn verify_cases(full: bool) -> Vec<CaseResult> {
         }
     }
     // issue 3: Taylor bar, axisymmetric against a 3D quarter model (symmetry planes)
-    taylor::cases(full, &mut out);
+    taylor::cases(materials, full, &mut out);
 
     // section 9.2: plastic impact of a steel disk into a 6061-T6 target
-    impact::cases(full, &mut out);
+    impact::cases(materials, full, &mut out);
     out
 }

@@ -25,7 +25,6 @@
 //! github.com/bbanerjee/HighRateExptData, `TaylorData/DAT/CuZerilli.dat`. SI units.
 
 use materials::verify::CaseResult;
-use materials::{load_material, Material};
 use mpm_core::discretize::{fill, Shape};
 use mpm_core::failure::SimulationError;
 use mpm_core::kinematics::Kinematics;
@@ -35,7 +34,6 @@ use mpm_core::NodeSet;
 use mpm_core::VelocityBc;
 use nalgebra::SVector;
 use std::path::Path;
-use std::sync::Arc;
 use std::time::Instant;
 
 /// Initial bar length [m].
@@ -113,20 +111,10 @@ pub const ELASTIC_4340: Impact = Impact {
     velocity: 12.0,
 };
 
-fn material(file: &str) -> Arc<dyn Material> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../data/materials")
-        .join(file);
-    Arc::new(
-        load_material(&path)
-            .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-            .model,
-    )
-}
-
 /// Run the bar to `end` [s] on a grid of `spacing` [m] with `per_cell` particles per cell
 /// and direction.
 pub fn taylor_bar(
+    materials: &Path,
     model: Model,
     impact: Impact,
     spacing: f64,
@@ -151,7 +139,7 @@ pub fn taylor_bar(
             );
             solver.add_body(
                 "bar",
-                material(impact.material),
+                super::material(materials, impact.material),
                 &points,
                 SVector::<f64, 2>::new(0.0, -impact.velocity),
             );
@@ -177,7 +165,7 @@ pub fn taylor_bar(
             .collect();
             solver.add_body(
                 "bar",
-                material(impact.material),
+                super::material(materials, impact.material),
                 &points,
                 SVector::<f64, 3>::new(0.0, 0.0, -impact.velocity),
             );
@@ -283,7 +271,7 @@ fn run<const D: usize>(
 /// `mpw verify` rows: both models at dx = 0.635 mm (reduced) or 0.423 mm (full), to 80 µs.
 /// The footprint compared is the area-equivalent diameter D_A; the outer-edge diameter D_f
 /// is reported (in 3D it is set by single particles at the rim).
-pub fn cases(full: bool, out: &mut Vec<CaseResult>) {
+pub fn cases(materials: &Path, full: bool, out: &mut Vec<CaseResult>) {
     let dx = if full {
         commensurate_spacing(6)
     } else {
@@ -291,8 +279,8 @@ pub fn cases(full: bool, out: &mut Vec<CaseResult>) {
     };
     let name = format!("mpm/taylor/dx{:.3}mm", dx * 1e3);
     let (axi, solid) = match (
-        taylor_bar(Model::Axisymmetric, COPPER, dx, 2, 80e-6),
-        taylor_bar(Model::QuarterSolid, COPPER, dx, 2, 80e-6),
+        taylor_bar(materials, Model::Axisymmetric, COPPER, dx, 2, 80e-6),
+        taylor_bar(materials, Model::QuarterSolid, COPPER, dx, 2, 80e-6),
     ) {
         (Ok(a), Ok(s)) => (a, s),
         (a, s) => {
@@ -337,18 +325,26 @@ pub fn cases(full: bool, out: &mut Vec<CaseResult>) {
         axi.footprint_area,
         0.01,
     ));
-    refinement_rows(out);
+    refinement_rows(materials, out);
 }
 
 /// Reported, not asserted (issue 8 is open on both): the copper bar's final length at 3, 6
 /// and 12 cells across the radius with its successive differences, and the largest α of
 /// the elastic 4340 bar (must be 0) at 6 and 12 cells.
-fn refinement_rows(out: &mut Vec<CaseResult>) {
+fn refinement_rows(materials: &Path, out: &mut Vec<CaseResult>) {
     let name = "mpm/taylor/refinement-axi";
     let lengths: Result<Vec<f64>, _> = [3, 6, 12]
         .iter()
         .map(|&n| {
-            taylor_bar(Model::Axisymmetric, COPPER, RADIUS / n as f64, 2, 80e-6).map(|r| r.length)
+            taylor_bar(
+                materials,
+                Model::Axisymmetric,
+                COPPER,
+                RADIUS / n as f64,
+                2,
+                80e-6,
+            )
+            .map(|r| r.length)
         })
         .collect();
     match lengths {
@@ -367,7 +363,7 @@ fn refinement_rows(out: &mut Vec<CaseResult>) {
         Err(e) => out.push(CaseResult::holds(format!("{name}: {e}"), false)),
     }
     for n in [6, 12] {
-        match taylor_bar(Model::Axisymmetric, ELASTIC_4340, RADIUS / n as f64, 2, 40e-6) {
+        match taylor_bar(materials, Model::Axisymmetric, ELASTIC_4340, RADIUS / n as f64, 2, 40e-6) {
             Ok(r) => out.push(CaseResult::info(
                 format!("{name}/elastic-4340-12m_s/max-alpha at {n} cells across R (must be 0: gap, on the axis column)"),
                 r.max_alpha,
@@ -381,13 +377,30 @@ fn refinement_rows(out: &mut Vec<CaseResult>) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mpm_verify::test_materials;
 
     /// Coarse bars (dx = 0.635 mm, 12 particles across the radius) to 80 µs: both models
     /// come to rest and agree with each other; the measurement at t = 0 is the bar.
     #[test]
     fn coarse_axisymmetric_and_quarter_bars_agree() {
-        let axi = taylor_bar(Model::Axisymmetric, COPPER, COARSE, 2, 80e-6).unwrap();
-        let solid = taylor_bar(Model::QuarterSolid, COPPER, COARSE, 2, 80e-6).unwrap();
+        let axi = taylor_bar(
+            &test_materials(),
+            Model::Axisymmetric,
+            COPPER,
+            COARSE,
+            2,
+            80e-6,
+        )
+        .unwrap();
+        let solid = taylor_bar(
+            &test_materials(),
+            Model::QuarterSolid,
+            COPPER,
+            COARSE,
+            2,
+            80e-6,
+        )
+        .unwrap();
         for r in [&axi, &solid] {
             eprintln!(
                 "{:?}: {} particles, L_f = {:.3} mm, D_f = {:.3} mm, D_A = {:.3} mm, change {:.2e}, {:.1} s",
@@ -422,6 +435,7 @@ mod tests {
 #[cfg(test)]
 mod refinement {
     use super::*;
+    use crate::mpm_verify::test_materials;
 
     #[test]
     #[ignore]
@@ -433,7 +447,15 @@ mod refinement {
         println!("model | dx mm | particles | L_f mm | D_f mm | D_A mm | change | wall s");
         for (model, ks) in ks {
             for &k in *ks {
-                let r = taylor_bar(*model, COPPER, commensurate_spacing(k), 2, 80e-6).unwrap();
+                let r = taylor_bar(
+                    &test_materials(),
+                    *model,
+                    COPPER,
+                    commensurate_spacing(k),
+                    2,
+                    80e-6,
+                )
+                .unwrap();
                 println!(
                     "{:?} | {:.4} | {} | {:.3} | {:.3} | {:.3} | {:.1e} | {:.1}",
                     r.model,
