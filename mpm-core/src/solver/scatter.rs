@@ -1,8 +1,8 @@
 //! Particle-to-grid transfer (algorithm 9), in parallel without locks: particles are
-//! bucketed into slabs of cells along the last axis by their first stencil node, slabs of
-//! one colour (even or odd) touch disjoint node ranges (the slab width is at least the
-//! kernel's support), and each slab adds its particles in index order, so the sums do not
-//! depend on the number of threads.
+//! bucketed into slabs of node rows along the last axis by their first stencil node; slabs
+//! of one colour (even or odd) touch disjoint node ranges (a slab is at least support − 1
+//! rows wide, so a stencil reaches at most into the next slab), and each slab adds its
+//! particles in index order, so the sums do not depend on the number of threads.
 
 use super::Solver;
 use crate::grid::Node;
