@@ -41,7 +41,7 @@ impl<const D: usize> WeightCache<D> {
         let nodes = K::NODES;
         self.nodes = nodes;
         self.support = K::SUPPORT;
-        self.offsets = stencil_offsets(grid, K::SUPPORT);
+        stencil_offsets(grid, K::SUPPORT, &mut self.offsets);
         let pad: usize = grid.strides.iter().map(|s| s * K::PAD).sum();
         self.first.resize(positions.len(), 0);
         self.n.resize(positions.len() * nodes, 0.0);
@@ -88,20 +88,20 @@ impl<const D: usize> WeightCache<D> {
     }
 }
 
-/// Node-number offsets of a `support`ᴰ stencil from its first node (x fastest).
-fn stencil_offsets<const D: usize>(grid: &Grid<D>, support: usize) -> Vec<usize> {
+/// Node-number offsets of a `support`ᴰ stencil from its first node (x fastest), into
+/// `offsets` (reused from step to step).
+fn stencil_offsets<const D: usize>(grid: &Grid<D>, support: usize, offsets: &mut Vec<usize>) {
     let count = support.pow(D as u32);
-    (0..count)
-        .map(|k| {
-            let mut rest = k;
-            let mut offset = 0;
-            for stride in grid.strides {
-                offset += (rest % support) * stride;
-                rest /= support;
-            }
-            offset
-        })
-        .collect()
+    offsets.clear();
+    offsets.extend((0..count).map(|k| {
+        let mut rest = k;
+        let mut offset = 0;
+        for stride in grid.strides {
+            offset += (rest % support) * stride;
+            rest /= support;
+        }
+        offset
+    }));
 }
 
 #[cfg(test)]

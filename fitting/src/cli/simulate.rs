@@ -92,11 +92,20 @@ pub fn energy_chart(history: &Path, png: &Path, title: &str) -> Result<()> {
         label: label.into(),
         points: rows.iter().map(|r| (r[0], f(r))).collect(),
     };
-    LineChart::new(format!("{title}: energies"), "t [s]", "energy [J]")
-        .with(series("kinetic", &|r| r[1]))
-        .with(series("internal (stress work)", &|r| r[2]))
-        .with(series("K + W_int - W_ext - W_bc", &|r| {
-            r[1] + r[2] - r[3] - r[4]
-        }))
-        .write_png(png)
+    // the unit the history states (J, or J/m in plane strain)
+    let unit = header[k]
+        .split(" [")
+        .nth(1)
+        .map_or("J", |u| u.trim_end_matches(']'));
+    LineChart::new(
+        format!("{title}: energies"),
+        "t [s]",
+        format!("energy [{unit}]"),
+    )
+    .with(series("kinetic", &|r| r[1]))
+    .with(series("internal (stress work)", &|r| r[2]))
+    .with(series("K + W_int - W_ext - W_bc", &|r| {
+        r[1] + r[2] - r[3] - r[4]
+    }))
+    .write_png(png)
 }

@@ -19,11 +19,8 @@ impl<const D: usize> Solver<D> {
             }
         }
         let (t, dt, step, h) = (self.time, self.dt, self.step, self.grid.min_spacing());
-        let max_speed = p
-            .velocity
-            .par_iter()
-            .map(|v| v.norm())
-            .reduce(|| 0.0, f64::max);
+        // the fastest point, for the search margin: only computed when a search is due
+        let mut max_speed = None;
         for rc in &mut self.rigid {
             let body = &rc.body;
             let pose = body.motion.pose(t);
@@ -42,6 +39,11 @@ impl<const D: usize> Solver<D> {
                     |(c, r)| (c - pose.center).norm() + r,
                 );
                 let turn = (later.rotation - pose.rotation).norm();
+                let max_speed = *max_speed.get_or_insert_with(|| {
+                    (p.velocity.par_iter())
+                        .map(|v| v.norm())
+                        .reduce(|| 0.0, f64::max)
+                });
                 let margin = h
                     + 2.0 * interval as f64 * dt * max_speed
                     + (later.translation - pose.translation).norm()

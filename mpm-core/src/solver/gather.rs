@@ -4,8 +4,7 @@
 //! take the hoop stretch r/R and the hoop rate v_r/r.
 
 use super::Solver;
-use crate::failure::Cause;
-use crate::failure::SimulationError;
+use crate::failure::{Cause, SimulationError};
 use crate::grid::Grid;
 use crate::kinematics::Kinematics;
 use crate::sum::fixed_sum;
