@@ -47,7 +47,7 @@ const MIN_RATIO_C: f64 = 2.0;
 
 fn truth() -> Material {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/materials");
-    materials::studies::elasto_plastic(&dir, "ss304l.toml").unwrap()
+    materials::load_elasto_plastic(dir.join("ss304l.toml")).unwrap()
 }
 
 fn env_or(key: &str, default: usize) -> usize {

@@ -9,7 +9,7 @@ use std::path::Path;
 
 fn material(file: &str) -> Material {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/materials");
-    materials::studies::elasto_plastic(&dir, file).unwrap()
+    materials::load_elasto_plastic(dir.join(file)).unwrap()
 }
 
 fn close(a: f64, b: f64) -> bool {

@@ -2,13 +2,14 @@
 
 use fitting::fit::fit_set::{FitSet, Stage};
 use fitting::fit::run::{run_fit, Optimizer};
-use fitting::fit::verify::{default_set_path, jacobian_vs_fd, recovery_cases};
+use fitting::fit::verify::{jacobian_vs_fd, recovery_cases};
+use fitting::verify_data::VerifyData;
 use materials::material::Model;
 
 /// A and B within 2 %, N within 5 %, C and M within 10 % of the truth in the file headers.
 #[test]
 fn default_set_recovers_the_truth() {
-    for row in recovery_cases().unwrap() {
+    for row in recovery_cases(&VerifyData::repository().default_set()).unwrap() {
         println!("{row}");
         assert!(row.passed, "{row}");
     }
@@ -17,7 +18,7 @@ fn default_set_recovers_the_truth() {
 /// Exact AD Jacobian against central differences: relative column error ≤ 1e-5.
 #[test]
 fn exact_jacobian_matches_central_differences() {
-    let d = jacobian_vs_fd().unwrap();
+    let d = jacobian_vs_fd(&VerifyData::repository().default_set()).unwrap();
     println!("worst column error {d:e}");
     assert!(d <= 1e-5, "{d:e}");
 }
@@ -29,7 +30,7 @@ fn exact_jacobian_matches_central_differences() {
 /// the `[truth]` of the set: A and B within 2 %, N within 5 %, C and M within 10 %.
 #[test]
 fn staged_fit_recovers_the_truth() {
-    let mut set = FitSet::load(&default_set_path()).unwrap();
+    let mut set = FitSet::load(&VerifyData::repository().default_set()).unwrap();
     let param = |name: &str| set.params.iter().position(|p| p.name == name).unwrap();
     let block = |name: &str| set.blocks.iter().position(|b| b.name == name).unwrap();
     set.stages = vec![

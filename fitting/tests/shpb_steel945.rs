@@ -5,11 +5,12 @@
 mod common;
 
 use fitting::experiment::ShpbExperiment;
-use fitting::shpb::{analyze, steel_945_experiments, ShpbAnalysis};
+use fitting::shpb::{analyze, ShpbAnalysis};
+use fitting::verify_data::VerifyData;
 
 #[test]
 fn paired_tests_agree_on_strain_rate() {
-    let Some(files) = steel_945_experiments() else {
+    let Some(files) = VerifyData::repository().steel_945() else {
         common::skip("../shared/data/shpb/steel_945");
         return;
     };

@@ -7,7 +7,6 @@
 
 pub mod ad;
 pub mod any_model;
-pub mod conformance;
 pub mod driver;
 pub mod elastic;
 pub mod error;
@@ -24,16 +23,14 @@ pub mod return_principal;
 pub mod return_reference;
 pub mod scalar;
 pub mod signal;
-pub mod studies;
 pub mod sym_eigen;
 pub mod tensor;
-pub mod verify;
 
 pub use any_model::AnyModel;
 pub use error::MaterialError;
 pub use flow_stress::FlowStress;
 pub use material::{Material, Model, State};
 pub use neo_hooke::NeoHooke;
-pub use param_file::{load_material, MaterialFile};
+pub use param_file::{load_elasto_plastic, load_material, MaterialFile};
 pub use plasticity::{ElastoPlastic, ReturnMap};
 pub use scalar::Scalar;

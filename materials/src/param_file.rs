@@ -405,3 +405,16 @@ pub fn load_material(path: impl AsRef<Path>) -> Result<MaterialFile, ParamFileEr
     })?;
     parse_material(&text, path)
 }
+
+/// Load a parameter file that must hold an elasto-plastic model (J2 or Johnson-Cook).
+pub fn load_elasto_plastic(path: impl AsRef<Path>) -> Result<ElastoPlastic, ParamFileError> {
+    let path = path.as_ref();
+    match load_material(path)?.model {
+        AnyModel::ElastoPlastic(m) => Ok(m),
+        AnyModel::NeoHooke(_) => Err(ParamFileError::Field {
+            file: path.to_path_buf(),
+            field: "model".into(),
+            problem: "expected \"j2\" or \"johnson-cook\" here, found a Neo-Hooke model".into(),
+        }),
+    }
+}

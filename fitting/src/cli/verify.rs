@@ -5,8 +5,9 @@
 
 use crate::chart::{LineChart, Series};
 use crate::heatmap::HeatMap;
+use crate::materials_verify::{self as studies, figure_4_5, iso_error};
+use crate::verify_data::VerifyData;
 use anyhow::{bail, Result};
-use materials::studies::{self, figure_4_5, iso_error};
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
@@ -17,11 +18,13 @@ pub struct Args {
     /// Write the verification charts (PNG) into this folder.
     #[arg(long)]
     pub charts: Option<PathBuf>,
-    /// Material parameter folder (every material and MPM case reads its materials here,
-    /// so a copied binary runs the table from anywhere).
-    #[arg(long, default_value = "data/materials")]
-    pub materials: PathBuf,
-    /// Fail when the rows on the shared real data (../shared/data) did not run.
+    /// Reference data folder: materials/ (parameter sets of every material and MPM case)
+    /// and experiments/ (the default set, the 304L and 945 experiment files, whose real
+    /// records lie in DIR/../../shared/data), so a copied binary runs the table from
+    /// anywhere.
+    #[arg(long, default_value = "data")]
+    pub data: PathBuf,
+    /// Fail when the rows on the shared real data (DIR/../../shared/data) did not run.
     #[arg(long)]
     pub require_data: bool,
     /// Also write every row (case, measured and reference to full precision, result) to
@@ -31,7 +34,7 @@ pub struct Args {
 }
 
 /// Every row with its numbers in shortest round-trip form.
-fn write_values(path: &Path, cases: &[materials::verify::CaseResult]) -> Result<()> {
+fn write_values(path: &Path, cases: &[crate::case_result::CaseResult]) -> Result<()> {
     let mut text = String::from("case,measured,reference,result\n");
     for c in cases {
         let result = if c.info {
@@ -53,7 +56,7 @@ fn write_values(path: &Path, cases: &[materials::verify::CaseResult]) -> Result<
 
 /// Thesis figure 4.5: σ_xx against engineering strain for the four rate/temperature pairs.
 fn figure_4_5_chart(materials: &Path, out: &Path) -> Result<()> {
-    let m = studies::elasto_plastic(materials, "aisi_4340.toml")?;
+    let m = materials::load_elasto_plastic(materials.join("aisi_4340.toml"))?;
     let mut chart = LineChart::new(
         "Johnson-Cook AISI 4340, uniaxial tension then hold (thesis fig. 4.5)",
         "engineering strain ε_xx [-]",
@@ -77,7 +80,7 @@ fn figure_4_5_chart(materials: &Path, out: &Path) -> Result<()> {
 fn iso_error_charts(materials: &Path, out: &Path) -> Result<()> {
     let multiples: Vec<f64> = (0..=20).map(|k| 5.0 * k as f64).collect();
     let j2 = studies::j2_voce(materials)?;
-    let jc = studies::elasto_plastic(materials, "42crmo4_qt660.toml")?;
+    let jc = materials::load_elasto_plastic(materials.join("42crmo4_qt660.toml"))?;
     for (name, m) in [("j2", j2), ("johnson_cook", jc)] {
         let map = iso_error::run(&m, &multiples);
         HeatMap {
@@ -139,10 +142,12 @@ fn bar_energy_chart(out: &Path) -> Result<()> {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let mut cases = studies::verify_cases(&args.materials, args.full)?;
-    cases.extend(crate::shpb::verify_cases());
-    cases.extend(crate::fit::verify::verify_cases());
-    cases.extend(crate::mpm_verify::verify_cases(&args.materials, args.full));
+    let data = VerifyData::new(&args.data);
+    let materials = data.materials();
+    let mut cases = studies::verify_cases(&materials, args.full)?;
+    cases.extend(crate::shpb::verify_cases(&data));
+    cases.extend(crate::fit::verify::verify_cases(&data));
+    cases.extend(crate::mpm_verify::verify_cases(&materials, args.full));
     println!(
         "{:<60} {:>14} {:>14} {:>12} result",
         "case", "measured", "reference", "tolerance"
@@ -155,8 +160,8 @@ pub fn run(args: Args) -> Result<()> {
     }
     if let Some(dir) = &args.charts {
         std::fs::create_dir_all(dir)?;
-        figure_4_5_chart(&args.materials, dir)?;
-        iso_error_charts(&args.materials, dir)?;
+        figure_4_5_chart(&materials, dir)?;
+        iso_error_charts(&materials, dir)?;
         bar_energy_chart(dir)?;
         println!("charts written to {}", dir.display());
     }
@@ -169,17 +174,21 @@ pub fn run(args: Args) -> Result<()> {
         failed,
         info
     );
-    let missing_945 = crate::shpb::steel_945_experiments().is_none();
-    let missing_304l = crate::fit::verify::ss304l_set_path().is_none();
+    let missing_945 = data.steel_945().is_none();
+    let missing_304l = data.ss304l_set().is_none();
     if missing_945 || missing_304l {
         println!(
-            "note: the real-data rows did not run ({}): the shared data folder ../shared/data is not beside the repository",
-            [(missing_945, "945 SHPB pairs"), (missing_304l, "304L leave-one-rate-out")]
-                .iter()
-                .filter(|(missing, _)| *missing)
-                .map(|(_, rows)| *rows)
-                .collect::<Vec<_>>()
-                .join(", ")
+            "note: the real-data rows did not run ({}): the shared data folder {} is not there",
+            [
+                (missing_945, "945 SHPB pairs"),
+                (missing_304l, "304L leave-one-rate-out")
+            ]
+            .iter()
+            .filter(|(missing, _)| *missing)
+            .map(|(_, rows)| *rows)
+            .collect::<Vec<_>>()
+            .join(", "),
+            data.shared_root().display()
         );
         if args.require_data {
             bail!("--require-data: the real-data rows did not run");

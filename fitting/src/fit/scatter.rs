@@ -316,7 +316,7 @@ mod tests {
 
     fn material() -> Material {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/materials");
-        materials::studies::elasto_plastic(&dir, "ss304l.toml").unwrap()
+        materials::load_elasto_plastic(dir.join("ss304l.toml")).unwrap()
     }
 
     #[test]

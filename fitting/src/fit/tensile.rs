@@ -156,7 +156,8 @@ mod tests {
 
     fn material() -> Material {
         let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../data/materials");
-        materials::studies::elasto_plastic(dir.as_ref(), "42crmo4_qt660.toml").unwrap()
+        materials::load_elasto_plastic(std::path::Path::new(dir).join("42crmo4_qt660.toml"))
+            .unwrap()
     }
 
     /// A history of 4 points to 1.25 % strain takes 1 + 2 + 3 + 1 steps (at most 0.25 % per

@@ -12,9 +12,10 @@ use super::fit_set::FitSet;
 use super::objective::{JacobianKind, Objective};
 use super::params::ParamSpace;
 use super::run::{run_fit, Optimizer};
+use crate::case_result::CaseResult;
+use crate::verify_data::VerifyData;
 use anyhow::Result;
 use materials::material::Model;
-use materials::verify::CaseResult;
 use std::path::Path;
 
 /// Tolerance of each parameter's recovery (relative).
@@ -26,14 +27,9 @@ pub const RECOVERY_TOLERANCE: [(&str, f64); 5] = [
     ("M", 0.10),
 ];
 
-/// The shipped default experiment set.
-pub fn default_set_path() -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/experiments/default.toml")
-}
-
 /// Fit the default set with LM (exact Jacobian) and compare with its `[truth]`.
-pub fn recovery_cases() -> Result<Vec<CaseResult>> {
-    let set = FitSet::load(&default_set_path())?;
+pub fn recovery_cases(set_file: &Path) -> Result<Vec<CaseResult>> {
+    let set = FitSet::load(set_file)?;
     let result = run_fit(&set, Optimizer::LmExact, &|_, _, _| {})?;
     let mut rows = Vec::new();
     for (name, tol) in RECOVERY_TOLERANCE {
@@ -49,8 +45,8 @@ pub fn recovery_cases() -> Result<Vec<CaseResult>> {
 
 /// Largest relative difference between the exact Jacobian dr/du and a central finite
 /// difference (step 1e-5 in u), over columns, normalized by each column's norm.
-pub fn jacobian_vs_fd() -> Result<f64> {
-    let set = FitSet::load(&default_set_path())?;
+pub fn jacobian_vs_fd(set_file: &Path) -> Result<f64> {
+    let set = FitSet::load(set_file)?;
     let space = ParamSpace::new(set.params.clone())?;
     let objective = Objective::new(set.base, set.blocks.iter().collect(), space.clone())?;
     let u = space.to_unbounded(&space.starts());
@@ -75,14 +71,6 @@ pub fn jacobian_vs_fd() -> Result<f64> {
 /// Out-of-sample RMS against its mean curve that a left-out rate must meet [-].
 pub const LEFT_OUT_RMS: f64 = 0.05;
 
-/// The shipped all-records 304L set, if the shared data folder exists.
-pub fn ss304l_set_path() -> Option<std::path::PathBuf> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    root.join("../shared/data/tension/304L")
-        .is_dir()
-        .then(|| root.join("data/experiments/fit_304l.toml"))
-}
-
 /// Leave-one-rate-out rows on the 304L records (one start per fit).
 pub fn leave_one_rate_out_cases(set_file: &Path) -> Result<Vec<CaseResult>> {
     let mut set = FitSet::load(set_file)?;
@@ -104,23 +92,26 @@ pub fn leave_one_rate_out_cases(set_file: &Path) -> Result<Vec<CaseResult>> {
 }
 
 /// All fitting rows for `mpw verify`.
-pub fn verify_cases() -> Vec<CaseResult> {
-    let mut rows = match recovery_cases() {
+pub fn verify_cases(data: &VerifyData) -> Vec<CaseResult> {
+    let mut rows = match recovery_cases(&data.default_set()) {
         Ok(r) => r,
         Err(e) => {
             eprintln!("fit/synthetic-recovery: {e:#}");
             vec![CaseResult::holds("fit/synthetic-recovery", false)]
         }
     };
-    rows.push(match jacobian_vs_fd() {
+    rows.push(match jacobian_vs_fd(&data.default_set()) {
         Ok(d) => CaseResult::at_most("fit/jacobian-ad-vs-central-fd", d, 1e-5),
         Err(e) => {
             eprintln!("fit/jacobian-ad-vs-central-fd: {e:#}");
             CaseResult::holds("fit/jacobian-ad-vs-central-fd", false)
         }
     });
-    let Some(file) = ss304l_set_path() else {
-        eprintln!("note: ../shared/data/tension/304L not found; 304L leave-one-rate-out skipped");
+    let Some(file) = data.ss304l_set() else {
+        eprintln!(
+            "note: {} not found; 304L leave-one-rate-out skipped",
+            data.shared_root().join("tension/304L").display()
+        );
         return rows;
     };
     match leave_one_rate_out_cases(&file) {

@@ -27,7 +27,7 @@
 //! y_tip = min y of the disk's points − s/2 (y_tip(0) is the target surface), and the bullet's kinetic energy ½ Σ m v² [J per metre of
 //! thickness]. SI units.
 
-use materials::verify::CaseResult;
+use crate::case_result::CaseResult;
 use mpm_core::discretize::{fill, Shape};
 use mpm_core::failure::SimulationError;
 use mpm_core::kinematics::Kinematics;

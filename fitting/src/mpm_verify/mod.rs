@@ -12,26 +12,28 @@ pub mod rigid_contact;
 pub mod taylor;
 pub mod vibration;
 
+use crate::case_result::CaseResult;
 use integrators::{Integrator, MassSpring};
-use materials::verify::CaseResult;
 use materials::{load_material, Material};
 use mpm_core::solver::Scheme;
 use std::path::Path;
 use std::sync::Arc;
 
-/// A material of the parameter folder `materials` (`mpw verify --materials`).
+/// A material of the parameter folder `materials` (`mpw verify --data DIR`: DIR/materials).
 fn material(materials: &Path, file: &str) -> Arc<dyn Material> {
     let path = materials.join(file);
     match load_material(&path) {
         Ok(m) => Arc::new(m.model),
-        Err(e) => panic!("{e} (the verification cases read their materials from --materials)"),
+        Err(e) => panic!(
+            "{e} (the verification cases read their materials from DIR/materials of --data DIR)"
+        ),
     }
 }
 
 /// The repository's parameter folder, for the modules' unit tests.
 #[cfg(test)]
 pub fn test_materials() -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/materials")
+    crate::verify_data::VerifyData::repository().materials()
 }
 
 /// Run every MPM verification case with the materials of the folder `materials`; `full`

@@ -24,7 +24,7 @@
 //! Zerilli & Armstrong (1987, J. Appl. Phys. 61, 1816) in B. Banerjee's collection
 //! github.com/bbanerjee/HighRateExptData, `TaylorData/DAT/CuZerilli.dat`. SI units.
 
-use materials::verify::CaseResult;
+use crate::case_result::CaseResult;
 use mpm_core::discretize::{fill, Shape};
 use mpm_core::failure::SimulationError;
 use mpm_core::kinematics::Kinematics;

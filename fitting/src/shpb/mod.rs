@@ -19,4 +19,4 @@ pub use analysis::{analyze, ShpbAnalysis};
 pub use error::ShpbError;
 pub use plateau::Plateau;
 pub use pulses::{detect_pulses, PulseWindows};
-pub use verify::{steel_945_experiments, synthetic_round_trip, verify_cases, RoundTrip};
+pub use verify::{synthetic_round_trip, verify_cases, RoundTrip};

@@ -5,9 +5,9 @@
 use super::analysis::{analyze, ShpbAnalysis};
 use super::synthetic::{SyntheticSetup, SyntheticShpb};
 use super::ShpbError;
+use crate::case_result::CaseResult;
 use crate::experiment::ShpbExperiment;
-use materials::verify::CaseResult;
-use std::path::{Path, PathBuf};
+use crate::verify_data::VerifyData;
 
 /// Errors of the processed record against the exact synthetic specimen history.
 #[derive(Debug, Clone)]
@@ -72,23 +72,8 @@ pub fn synthetic_round_trip(setup: &SyntheticSetup) -> Result<RoundTrip, ShpbErr
     })
 }
 
-/// The experiment TOMLs of the six 945-steel records shipped in `data/`, if the shared
-/// data folder (`../shared/data` beside the repository) exists.
-pub fn steel_945_experiments() -> Option<Vec<PathBuf>> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    if !root.join("../shared/data/shpb/steel_945").is_dir() {
-        return None;
-    }
-    let folder = root.join("data/experiments/shpb_steel_945");
-    Some(
-        (1..=6)
-            .map(|i| folder.join(format!("test_0{i}.toml")))
-            .collect(),
-    )
-}
-
 /// Rows of `mpw verify` for the SHPB processing.
-pub fn verify_cases() -> Vec<CaseResult> {
+pub fn verify_cases(data: &VerifyData) -> Vec<CaseResult> {
     let mut cases = Vec::new();
     match synthetic_round_trip(&SyntheticSetup::steel_945_like(1)) {
         Ok(r) => {
@@ -124,8 +109,11 @@ pub fn verify_cases() -> Vec<CaseResult> {
             cases.push(CaseResult::holds("shpb/synthetic round trip runs", false));
         }
     }
-    let Some(files) = steel_945_experiments() else {
-        eprintln!("note: ../shared/data/shpb/steel_945 not found; SHPB pair agreement skipped");
+    let Some(files) = data.steel_945() else {
+        eprintln!(
+            "note: {} not found; SHPB pair agreement skipped",
+            data.shared_root().join("shpb/steel_945").display()
+        );
         return cases;
     };
     let rates: Vec<Option<f64>> = files

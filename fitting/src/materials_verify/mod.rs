@@ -1,34 +1,22 @@
-//! Verification studies of the material models that produce both numbers (as
-//! `verify::CaseResult` rows) and data for charts.
+//! The materials rows of `mpw verify` (conformance of every model, figure 4.5, the
+//! iso-error maps): the application's catalogue, not the materials library. Each study
+//! gives both numbers (`CaseResult` rows) and data for charts.
 
+pub mod conformance;
 pub mod figure_4_5;
 pub mod iso_error;
 
-use crate::conformance;
-use crate::flow_stress::{FlowStress, Voce};
-use crate::param_file::{load_material, ParamFileError};
-use crate::plasticity::{ElastoPlastic, ReturnMap};
-use crate::verify::CaseResult;
-use crate::AnyModel;
+use crate::case_result::CaseResult;
+use materials::flow_stress::{FlowStress, Voce};
+use materials::param_file::{load_elasto_plastic, load_material, ParamFileError};
+use materials::plasticity::{ElastoPlastic, ReturnMap};
+use materials::AnyModel;
 use std::path::Path;
-
-/// The elasto-plastic model of parameter file `file` in `dir`.
-pub fn elasto_plastic(dir: &Path, file: &str) -> Result<ElastoPlastic, ParamFileError> {
-    let path = dir.join(file);
-    match load_material(&path)?.model {
-        AnyModel::ElastoPlastic(m) => Ok(m),
-        AnyModel::NeoHooke(_) => Err(ParamFileError::Field {
-            file: path,
-            field: "model".into(),
-            problem: "expected \"j2\" or \"johnson-cook\" for this study".into(),
-        }),
-    }
-}
 
 /// The J2 model of the studies: Voce saturation and linear hardening on the 6061-T6
 /// elastic constants, so every term of eq. 4.51 is exercised.
 pub fn j2_voce(dir: &Path) -> Result<ElastoPlastic, ParamFileError> {
-    let mut j2 = elasto_plastic(dir, "al6061_t6.toml")?;
+    let mut j2 = load_elasto_plastic(dir.join("al6061_t6.toml"))?;
     j2.flow = FlowStress::Voce(Voce {
         tau0: 300e6,
         tau_inf: 450e6,
@@ -43,10 +31,16 @@ pub fn j2_voce(dir: &Path) -> Result<ElastoPlastic, ParamFileError> {
 pub fn verify_cases(dir: &Path, full: bool) -> Result<Vec<CaseResult>, ParamFileError> {
     let neo_hooke = match load_material(dir.join("aisi_52100.toml"))?.model {
         AnyModel::NeoHooke(m) => m,
-        AnyModel::ElastoPlastic(_) => panic!("aisi_52100.toml is not Neo-Hooke"),
+        AnyModel::ElastoPlastic(_) => {
+            return Err(ParamFileError::Field {
+                file: dir.join("aisi_52100.toml"),
+                field: "model".into(),
+                problem: "expected \"neo-hooke\" for the hyperelastic rows".into(),
+            })
+        }
     };
     let j2 = j2_voce(dir)?;
-    let jc = elasto_plastic(dir, "42crmo4_qt660.toml")?;
+    let jc = load_elasto_plastic(dir.join("42crmo4_qt660.toml"))?;
     let with = |m: &ElastoPlastic, rm| ElastoPlastic {
         return_map: rm,
         ..*m
@@ -78,7 +72,7 @@ pub fn verify_cases(dir: &Path, full: bool) -> Result<Vec<CaseResult>, ParamFile
         &["A", "B", "N", "C", "M", "gamma_tq"],
     ));
 
-    let aisi_4340 = elasto_plastic(dir, "aisi_4340.toml")?;
+    let aisi_4340 = load_elasto_plastic(dir.join("aisi_4340.toml"))?;
     let curves = figure_4_5::run(&aisi_4340).expect("figure 4.5 paths");
     out.extend(figure_4_5::cases(&aisi_4340, &curves));
 

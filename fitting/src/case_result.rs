@@ -1,5 +1,6 @@
 //! One row of the `mpw verify` table: a verification case with its measured value,
-//! reference value and tolerance. Every crate contributes its own cases.
+//! reference value and tolerance. Every part of the catalogue (materials, SHPB, fitting,
+//! MPM) contributes its own rows.
 
 use std::fmt;
 

@@ -7,13 +7,13 @@
 //! plastic incompressibility det Fp = 1, elastic unloading slope, and (Neo-Hooke)
 //! σ = ∂ψ/∂F Fᵀ/J.
 
-use crate::ad;
-use crate::driver::{self, LoadPath, Ramp, Temperature};
-use crate::material::{Model, State};
-use crate::neo_hooke::NeoHooke;
-use crate::plasticity::ElastoPlastic;
-use crate::tensor::{det, M3};
-use crate::verify::CaseResult;
+use crate::case_result::CaseResult;
+use materials::ad;
+use materials::driver::{self, LoadPath, Ramp, Temperature};
+use materials::material::{Model, State};
+use materials::neo_hooke::NeoHooke;
+use materials::plasticity::ElastoPlastic;
+use materials::tensor::{det, M3};
 use nalgebra::{Rotation3, SMatrix, SVector, Vector3};
 use num_dual::{gradient, DualSVec64};
 

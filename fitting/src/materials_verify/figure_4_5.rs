@@ -13,10 +13,10 @@
 //! - during the hold the rate term drops to 1: the end-of-hold stress equals the
 //!   quasi-static JC value (within 0.5 %).
 
-use crate::driver::{self, LoadPath, Ramp, RateKind, Record, Temperature};
-use crate::flow_stress::FlowStress;
-use crate::plasticity::ElastoPlastic;
-use crate::verify::CaseResult;
+use crate::case_result::CaseResult;
+use materials::driver::{self, LoadPath, Ramp, RateKind, Record, Temperature};
+use materials::flow_stress::FlowStress;
+use materials::plasticity::ElastoPlastic;
 
 pub const RATES: [f64; 2] = [1.0, 1000.0];
 pub const TEMPERATURES: [f64; 2] = [293.15, 773.15];

@@ -5,12 +5,12 @@
 //! one-step stress with a reference of `SUBSTEPS` sub-steps over the same time:
 //! error = ‖σ_one − σ_ref‖ / ‖σ_ref‖. Increments from 1 to 100 yield strains.
 
-use crate::driver::{self, LoadPath, Ramp, Temperature};
-use crate::expm::expm;
-use crate::material::{Model, State};
-use crate::plasticity::ElastoPlastic;
-use crate::tensor::M3;
-use crate::verify::CaseResult;
+use crate::case_result::CaseResult;
+use materials::driver::{self, LoadPath, Ramp, Temperature};
+use materials::expm::expm;
+use materials::material::{Model, State};
+use materials::plasticity::ElastoPlastic;
+use materials::tensor::M3;
 
 pub const SUBSTEPS: usize = 400;
 /// Total time of the increment [s] (plastic rates 10..1000 1/s for steels).
