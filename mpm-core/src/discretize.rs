@@ -101,10 +101,7 @@ pub fn fill<const D: usize>(
     };
     pieces
         .into_iter()
-        .map(|(x, size)| match kinematics {
-            Kinematics::Axisymmetric => (x, 2.0 * PI * x[0] * size),
-            _ => (x, size),
-        })
+        .map(|(x, size)| (x, kinematics.volume(&x, size)))
         .collect()
 }
 

@@ -1,11 +1,18 @@
-//! Which continuum the 2D or 3D grid represents. Materials always see a 3×3 F.
+//! Which continuum the 2D or 3D grid represents, and everything that depends on it: how a
+//! point's in-plane velocity gradient becomes the 3×3 L and F the materials see, the hoop
+//! term of the internal force, and a point's volume. Solver stages and the discretization
+//! ask this module; none of them branches on the kinematics itself.
 //!
-//! - `PlaneStrain` (D = 2): F = [[F_2D, 0], [0, 1]], so F33 = 1 and L33 = 0.
-//! - `Axisymmetric` (D = 2, coordinates (r, z)): the hoop stretch F_θθ = r/R of a point
-//!   at radius r that started at R; the hoop strain rate v_r/r enters the stress power and
-//!   the internal force gains the hoop term σ_θθ N_I / r in the radial direction
-//!   (Sulsky & Schreyer 1996); particle volume is the ring 2π r A.
+//! - `PlaneStrain` (D = 2): F = [[F_2D, 0], [0, 1]], so F33 = 1 and L33 = 0; volumes are
+//!   per metre of thickness [m³/m].
+//! - `Axisymmetric` (D = 2, coordinates (r, z)): the hoop stretch F_θθ = r/R of a point at
+//!   radius r that started at R; the hoop strain rate v_r/r enters the stress power and
+//!   the internal force gains the hoop term σ_θθ N_I V / r in the radial direction (Sulsky
+//!   & Schreyer 1996); a point of cross-section A at radius r is the ring 2π r A (Pappus).
 //! - `Solid` (D = 3): full 3D.
+
+use nalgebra::{Matrix3, SMatrix, SVector};
+use std::f64::consts::PI;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Kinematics {
@@ -21,5 +28,78 @@ impl Kinematics {
             Kinematics::PlaneStrain | Kinematics::Axisymmetric => 2,
             Kinematics::Solid => 3,
         }
+    }
+
+    /// The 3×3 velocity gradient L [1/s] and the updated F_{n+1} = (I + L Δt) F_n of a
+    /// point at `x` (reference position `x_ref`) from its in-plane gradient `l` and grid
+    /// velocity `vg`. Axisymmetric: L_θθ = v_r / r and F_θθ = (r + v_r Δt) / R.
+    #[inline]
+    pub fn deformation<const D: usize>(
+        self,
+        l: &SMatrix<f64, D, D>,
+        vg: &SVector<f64, D>,
+        (x, x_ref): (&SVector<f64, D>, &SVector<f64, D>),
+        f: &Matrix3<f64>,
+        dt: f64,
+    ) -> (Matrix3<f64>, Matrix3<f64>) {
+        let mut l3 = Matrix3::zeros();
+        l3.fixed_view_mut::<D, D>(0, 0).copy_from(l);
+        let mut f_new = (Matrix3::identity() + l3 * dt) * f;
+        if self == Kinematics::Axisymmetric {
+            l3[(2, 2)] = vg[0] / x[0];
+            f_new[(2, 2)] = (x[0] + vg[0] * dt) / x_ref[0];
+        }
+        (l3, f_new)
+    }
+
+    /// The hoop force density σ_θθ V / r [N] that a point at `x` adds, times N_I, to the
+    /// radial internal force of node I (zero unless axisymmetric).
+    #[inline]
+    pub fn hoop_force<const D: usize>(
+        self,
+        sigma: &Matrix3<f64>,
+        volume: f64,
+        x: &SVector<f64, D>,
+    ) -> f64 {
+        match self {
+            Kinematics::Axisymmetric => sigma[(2, 2)] * volume / x[0],
+            _ => 0.0,
+        }
+    }
+
+    /// Volume [m³] (plane strain: per metre) of a point at `x` whose piece of the grid's
+    /// space has size `size` (area in 2D, volume in 3D).
+    pub fn volume<const D: usize>(self, x: &SVector<f64, D>, size: f64) -> f64 {
+        match self {
+            Kinematics::Axisymmetric => 2.0 * PI * x[0] * size,
+            _ => size,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Matrix2, Vector2};
+
+    #[test]
+    fn axisymmetric_hoop_terms_follow_the_radius() {
+        let l = Matrix2::new(0.1, 0.0, 0.0, -0.2);
+        let (x, x_ref, vg) = (
+            Vector2::new(2.0, 1.0),
+            Vector2::new(1.6, 1.0),
+            Vector2::new(0.4, 0.0),
+        );
+        let f = Matrix3::from_diagonal(&nalgebra::Vector3::new(1.0, 1.0, 1.25));
+        let (l3, f_new) = Kinematics::Axisymmetric.deformation(&l, &vg, (&x, &x_ref), &f, 0.5);
+        assert_eq!(l3[(2, 2)], 0.2); // v_r / r
+        assert_eq!(f_new[(2, 2)], 2.2 / 1.6); // (r + v_r Δt) / R
+        assert_eq!(f_new[(0, 0)], 1.05);
+        let (l3, f_new) = Kinematics::PlaneStrain.deformation(&l, &vg, (&x, &x_ref), &f, 0.5);
+        assert_eq!((l3[(2, 2)], f_new[(2, 2)]), (0.0, 1.25));
+        let sigma = Matrix3::from_diagonal(&nalgebra::Vector3::new(0.0, 0.0, 3.0));
+        assert_eq!(Kinematics::Axisymmetric.hoop_force(&sigma, 4.0, &x), 6.0);
+        assert_eq!(Kinematics::PlaneStrain.hoop_force(&sigma, 4.0, &x), 0.0);
+        assert_eq!(Kinematics::Axisymmetric.volume(&x, 1.0), 4.0 * PI);
     }
 }

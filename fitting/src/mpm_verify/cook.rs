@@ -48,14 +48,33 @@ pub const THESIS_U_Y: f64 = 10.708e-3;
 pub const FEM_U_Y: f64 = 10.6e-3;
 /// Grid spacing [m].
 pub const SPACING: f64 = 2e-3;
-/// Refinements of the reduced verification and the test: 1 433 and 5 745 points.
+/// Refinements of the reduced verification: 1 433 and 5 745 points.
 pub const TEST_LEVELS: [usize; 2] = [2, 4];
-/// Measured error at n = 4: +3.2 % against the thesis value.
-pub const TEST_TOLERANCE: f64 = 0.05;
 /// Refinements of `mpw verify --full`: 1 433 to 92 101 points.
 pub const FULL_LEVELS: [usize; 4] = [2, 4, 8, 16];
-/// Measured error at n = 16: −1.2 % against the thesis value, −0.2 % against FEM.
-pub const FULL_TOLERANCE: f64 = 0.02;
+/// The two published references differ by 1.0 % (10.708 vs 10.6 mm) and neither is
+/// known better: the thesis's own MPM run is not converged, the FEM value is read from a
+/// plot to three digits. This spread is the reference's uncertainty.
+pub const REFERENCE_SPREAD: f64 = 0.01;
+/// Order of convergence of u_y per halving of the point spacing: 2 assumed, 2.1-2.2
+/// observed in `mpw verify --full` (differences 1.171, 0.275, 0.059 mm).
+pub const ORDER: f64 = 2.0;
+pub const ORDER_OBSERVED_MAX: f64 = 2.2;
+
+/// Richardson extrapolation of u_y from the levels n (`coarse`) and 2n (`fine`) at
+/// order `p`: u_fine − (u_coarse − u_fine) / (2^p − 1).
+pub fn extrapolate(coarse: f64, fine: f64, p: f64) -> f64 {
+    fine - (coarse - fine) / (2f64.powf(p) - 1.0)
+}
+
+/// Relative tolerance of the extrapolated u_y against the FEM value: the references'
+/// spread plus how far the extrapolant moves between the assumed and the largest
+/// observed order (0.6 % for the levels 2 and 4, 0.03 % for 8 and 16).
+pub fn extrapolation_tolerance(coarse: f64, fine: f64) -> f64 {
+    let order_effect =
+        extrapolate(coarse, fine, ORDER) - extrapolate(coarse, fine, ORDER_OBSERVED_MAX);
+    REFERENCE_SPREAD + order_effect.abs() / FEM_U_Y
+}
 /// Steady state: K/W_int at the end below 0.5 % (measured 3.9·10⁻³ at n = 2 falling to
 /// 1.2·10⁻⁴ at n = 16; what remains is particle velocity the grid does not see)...
 pub const STEADY_KINETIC: f64 = 5e-3;
@@ -211,26 +230,10 @@ mod tests {
     use mpm_core::scene::{load, Simulation};
 
     #[test]
-    fn corner_displacement_converges_towards_the_thesis_value() {
-        let rows = convergence(&TEST_LEVELS).unwrap();
-        eprintln!("{}", table(&rows));
-        let err: Vec<f64> = rows
-            .iter()
-            .map(|r| (r.u_y / THESIS_U_Y - 1.0).abs())
-            .collect();
-        assert!(err.windows(2).all(|w| w[1] < w[0]), "{err:?}");
-        let finest = rows.last().unwrap();
-        assert!(
-            err[err.len() - 1] < TEST_TOLERANCE,
-            "u_y {} m vs {THESIS_U_Y} m",
-            finest.u_y
-        );
-        for r in &rows {
-            assert!(
-                r.kinetic_ratio < STEADY_KINETIC && r.late_change < STEADY_CHANGE,
-                "{r:?}"
-            );
-        }
+    fn richardson_extrapolation_of_a_second_order_sequence_is_exact() {
+        // u(n) = 10 + 4 / n²: levels 2 and 4 give 11 and 10.25, the limit 10
+        assert!((extrapolate(11.0, 10.25, 2.0) - 10.0).abs() < 1e-12);
+        assert!(extrapolation_tolerance(11.0, 10.25) > REFERENCE_SPREAD);
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Grid-to-particle transfer (algorithms 11-12): point velocities from the nodal
 //! accelerations, the grid velocity ṽ for the position update, and the velocity gradient
-//! L = Σ v_I ⊗ ∇N_I that updates F, V, σ and the material history. Axisymmetric points
-//! take the hoop stretch r/R and the hoop rate v_r/r.
+//! L = Σ v_I ⊗ ∇N_I that updates F, V, σ and the material history (the out-of-plane
+//! terms from `Kinematics::deformation`).
 
 use super::Solver;
 use crate::failure::{Cause, SimulationError};
@@ -13,14 +13,6 @@ use crate::weights::Stencil;
 use materials::{Material, State};
 use nalgebra::{Matrix3, SMatrix, SVector};
 use rayon::prelude::*;
-
-/// Embed the in-plane D×D block in a 3×3 tensor.
-#[inline]
-fn embed<const D: usize>(a: &SMatrix<f64, D, D>) -> Matrix3<f64> {
-    let mut m = Matrix3::zeros();
-    m.fixed_view_mut::<D, D>(0, 0).copy_from(a);
-    m
-}
 
 /// Σ N v_I, Σ N a_I and L = Σ v_I ⊗ ∇N_I at one point.
 #[inline]
@@ -44,7 +36,7 @@ fn interpolate<const D: usize>(
 struct Deformation<'a> {
     material: &'a dyn Material,
     dt: f64,
-    axisymmetric: bool,
+    kinematics: Kinematics,
     viscosity: Option<BulkViscosity>,
     wave_speed: f64,
     cell: f64,
@@ -60,8 +52,8 @@ struct PointDeformation<'a> {
 }
 
 impl Deformation<'_> {
-    /// F ← (I + L Δt) F (hoop stretch r/R when axisymmetric), V = det F V0, σ and history
-    /// from the material, bulk viscosity, and the stress work ½ (σV + σ'V') : D Δt.
+    /// F ← (I + L Δt) F (with the kinematics' out-of-plane terms), V = det F V0, σ and
+    /// history from the material, bulk viscosity, and the stress work ½ (σV + σ'V') : D Δt.
     fn update<const D: usize>(
         &self,
         l: &SMatrix<f64, D, D>,
@@ -70,13 +62,7 @@ impl Deformation<'_> {
         p: PointDeformation<'_>,
     ) -> Result<(), Cause> {
         let dt = self.dt;
-        let mut l3 = embed(l);
-        let mut f_new = (Matrix3::identity() + l3 * dt) * *p.f;
-        if self.axisymmetric {
-            // hoop stretch r/R and hoop rate v_r / r
-            l3[(2, 2)] = vg[0] / x[0];
-            f_new[(2, 2)] = (x[0] + vg[0] * dt) / x_ref[0];
-        }
+        let (l3, f_new) = self.kinematics.deformation(l, vg, (x, x_ref), p.f, dt);
         let det = f_new.determinant();
         if !det.is_finite() {
             return Err(Cause::NonFinite {
@@ -125,7 +111,7 @@ impl<const D: usize> Solver<D> {
             let update = Deformation {
                 material: &*block.material,
                 dt,
-                axisymmetric: self.settings.kinematics == Kinematics::Axisymmetric,
+                kinematics: self.settings.kinematics,
                 viscosity: self.settings.bulk_viscosity,
                 wave_speed: block.wave_speed(),
                 cell: grid.min_spacing(),

@@ -79,7 +79,7 @@ impl<const D: usize> Solver<D> {
                 force: &s.force,
                 weights: &s.weights,
                 body_force: self.settings.body_force,
-                axisymmetric: self.settings.kinematics == Kinematics::Axisymmetric,
+                kinematics: self.settings.kinematics,
             };
             parts.into_par_iter().for_each(|(k, start, nodes)| {
                 for &i in &s.order[s.slab_start[k]..s.slab_start[k + 1]] {
@@ -144,7 +144,7 @@ struct Sources<'a, const D: usize> {
     force: &'a [SVector<f64, D>],
     weights: &'a WeightCache<D>,
     body_force: SVector<f64, D>,
-    axisymmetric: bool,
+    kinematics: Kinematics,
 }
 
 impl<const D: usize> Sources<'_, D> {
@@ -158,11 +158,9 @@ impl<const D: usize> Sources<'_, D> {
         let f_ext = self.force[i] + self.body_force * m;
         let vol = p.volume[i];
         let sigma: SMatrix<f64, D, D> = p.stress[i].fixed_view::<D, D>(0, 0).into_owned() * vol;
-        let hoop = if self.axisymmetric {
-            p.stress[i][(2, 2)] * vol / p.position[i][0]
-        } else {
-            0.0
-        };
+        let hoop = self
+            .kinematics
+            .hoop_force(&p.stress[i], vol, &p.position[i]);
         for (c, offset) in w.offsets.iter().enumerate() {
             let node = &mut nodes[w.first + offset - start];
             let n = w.n[c];
