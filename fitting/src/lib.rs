@@ -13,6 +13,7 @@ pub mod heatmap;
 pub mod materials_verify;
 pub mod mpm_verify;
 pub mod shpb;
+pub mod shpb_model;
 pub mod verify_data;
 
 pub use experiment::{load_experiment, Experiment, ExperimentError};

@@ -84,13 +84,13 @@ impl<const D: usize> ContactState<D> {
     }
 }
 
-/// Exact check and penalty force for one candidate at world position `x`: returns the
-/// force on the particle (world frame), updating or clearing its attachment.
+/// Exact check and penalty force for one candidate of mass `mass` at world position `x`:
+/// returns the force on the particle (world frame), updating or clearing its attachment.
 #[inline]
 pub fn candidate_force<const D: usize>(
     body: &RigidBody<D>,
     pose: &Pose<D>,
-    x: &SVector<f64, D>,
+    (x, mass): (&SVector<f64, D>, f64),
     attachment: &mut Option<SVector<f64, D>>,
 ) -> Option<SVector<f64, D>> {
     let xb = pose.to_body(x);
@@ -101,7 +101,7 @@ pub fn candidate_force<const D: usize>(
     }
     let xc = xb - plane.normal * d;
     let xa = attachment.get_or_insert(xc);
-    let f = penalty_force(&xb, &xc, xa, body.penalty, body.friction);
+    let f = penalty_force(&xb, &xc, xa, body.penalty_of(mass), body.friction);
     Some(pose.rotation * f)
 }
 

@@ -13,6 +13,7 @@
 //! with many material parameter sets. The verification catalogue lives with the
 //! application (`fitting::mpm_verify`).
 
+pub mod bar;
 pub mod boundary;
 pub mod contact;
 pub mod discretize;
@@ -33,6 +34,7 @@ pub mod viscosity;
 pub mod watchdog;
 pub mod weights;
 
+pub use bar::{BarEnd, ContactSprings};
 pub use boundary::{NodeSet, SpringBc, VelocityBc};
 pub use failure::{Cause, FailureKind, SimulationError};
 pub use grid::Grid;

@@ -5,10 +5,12 @@
 //! Geometry is stated in the reference (t = 0) frame. At time t a body point X is at
 //! x = c + u(t) + R(t) (X − c), with u(t) a piecewise-linear translation signal, R(t) a
 //! rotation by the piecewise-linear angle φ(t) about a fixed axis through c (in 2D the
-//! axis is z). A point is inside when every plane has n·(X − p) < 0 (outward normals n);
+//! axis is z); a face on an elastic bar adds its displacement along the bar axis, which
+//! the contact force drives (module `bar`). A point is inside when every plane has n·(X − p) < 0 (outward normals n);
 //! for an interior point the closest surface point is on the plane of largest signed
 //! distance d: X_C = X − d n.
 
+use crate::bar::BarEnd;
 use materials::signal::TimeSignal;
 use nalgebra::{Rotation3, SMatrix, SVector, Unit, Vector3};
 
@@ -27,11 +29,13 @@ pub struct Rotation {
     pub angle: TimeSignal<f64>,
 }
 
-/// Prescribed rigid motion.
+/// Rigid motion: prescribed translation and rotation, and the displacement of a face
+/// driven by an elastic bar (module `bar`), which follows the contact force.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Motion<const D: usize> {
     pub translation: Option<TimeSignal<SVector<f64, D>>>,
     pub rotation: Option<Rotation>,
+    pub bar: Option<BarEnd<D>>,
 }
 
 /// Placement of a body at one instant: x = c + u + R (X − c).
@@ -56,7 +60,11 @@ impl<const D: usize> Motion<D> {
         let translation = self
             .translation
             .as_ref()
-            .map_or(SVector::zeros(), |u| u.at(t));
+            .map_or(SVector::zeros(), |u| u.at(t))
+            + self
+                .bar
+                .as_ref()
+                .map_or(SVector::zeros(), |b| b.axis * b.displacement);
         match &self.rotation {
             None => Pose {
                 center: SVector::zeros(),
@@ -80,8 +88,13 @@ pub struct RigidBody<const D: usize> {
     pub name: String,
     pub planes: Vec<Plane<D>>,
     pub motion: Motion<D>,
-    /// Penalty stiffness κ_pen [kg/s²] (eq. 9.4).
+    /// Penalty stiffness κ_pen [kg/s²] (eq. 9.4), or, with `penalty_per_mass`, the
+    /// squared contact frequency ω_c² [1/s²] with κ = ω_c² m_p for a point of mass m_p.
     pub penalty: f64,
+    /// κ proportional to the point's mass: every point in contact oscillates at the same
+    /// ω_c, so light points (the rings near the axis of an axisymmetric model, cut rim
+    /// points) neither set Δt nor carry a pressure out of proportion to their area.
+    pub penalty_per_mass: bool,
     /// Coulomb friction coefficient μ [-] (eq. 9.3).
     pub friction: f64,
     /// Steps between coarse proximity searches.
@@ -92,6 +105,15 @@ pub struct RigidBody<const D: usize> {
 }
 
 impl<const D: usize> RigidBody<D> {
+    /// Penalty stiffness κ [N/m] on a point of mass `mass` [kg].
+    #[inline]
+    pub fn penalty_of(&self, mass: f64) -> f64 {
+        match self.penalty_per_mass {
+            true => self.penalty * mass,
+            false => self.penalty,
+        }
+    }
+
     /// The half-space below the plane through `point` with outward normal `normal`.
     pub fn half_space(
         name: &str,
@@ -108,6 +130,7 @@ impl<const D: usize> RigidBody<D> {
             }],
             motion: Motion::default(),
             penalty,
+            penalty_per_mass: false,
             friction,
             search_interval: 10,
             bounds: None,
@@ -140,6 +163,7 @@ impl<const D: usize> RigidBody<D> {
             planes,
             motion: Motion::default(),
             penalty,
+            penalty_per_mass: false,
             friction,
             search_interval: 10,
             bounds,
@@ -190,6 +214,7 @@ fn convex<const D: usize>(
         planes,
         motion: Motion::default(),
         penalty,
+        penalty_per_mass: false,
         friction,
         search_interval: 10,
         bounds: Some(sphere_around(vertices)),
@@ -260,6 +285,7 @@ pub fn recast<const D: usize, const E: usize>(body: RigidBody<D>) -> RigidBody<E
             .collect(),
         motion: Motion::default(),
         penalty: body.penalty,
+        penalty_per_mass: body.penalty_per_mass,
         friction: body.friction,
         search_interval: body.search_interval,
         bounds: body.bounds.map(|(c, r)| (v(&c), r)),

@@ -148,6 +148,7 @@ pub fn run(args: Args) -> Result<()> {
     cases.extend(crate::shpb::verify_cases(&data));
     cases.extend(crate::fit::verify::verify_cases(&data));
     cases.extend(crate::mpm_verify::verify_cases(&materials, args.full));
+    cases.extend(crate::shpb_model::verify::verify_cases());
     println!(
         "{:<60} {:>14} {:>14} {:>12} result",
         "case", "measured", "reference", "tolerance"

@@ -11,7 +11,7 @@ mod analysis;
 mod error;
 mod plateau;
 mod pulses;
-mod signal;
+pub(crate) mod signal;
 pub mod synthetic;
 mod verify;
 

@@ -1,9 +1,11 @@
 //! Forces on the points from outside the continuum: applied (traction) forces, boundary
-//! springs (eq. 12.1) and penalty contact with rigid bodies (eq. 9.2-9.7). Contact
+//! springs (eq. 12.1) and penalty contact with rigid bodies (eq. 9.2-9.7); a face on an
+//! elastic bar then moves with its contact force (module `bar`). Contact
 //! candidates are searched every `search_interval` steps within a margin that covers the
 //! travel of points and body until the next search.
 
 use super::Solver;
+use crate::bar::ContactSprings;
 use crate::contact::candidate_force;
 use nalgebra::SVector;
 use rayon::prelude::*;
@@ -24,7 +26,11 @@ impl<const D: usize> Solver<D> {
         for rc in &mut self.rigid {
             let body = &rc.body;
             let pose = body.motion.pose(t);
-            let interval = body.search_interval.max(1);
+            // a bar-driven face moves with the contact force: searched every step
+            let interval = match body.motion.bar {
+                Some(_) => 1,
+                None => body.search_interval.max(1),
+            };
             if step % interval == 0 {
                 // margin: particle travel plus body travel until the next search, plus a cell
                 let later = body.motion.pose(t + interval as f64 * dt);
@@ -65,16 +71,27 @@ impl<const D: usize> Solver<D> {
                 .candidates
                 .par_iter()
                 .zip(c.attachment.par_iter_mut())
-                .map(|(&i, a)| candidate_force(body, &pose, &p.position[i], a))
+                .map(|(&i, a)| candidate_force(body, &pose, (&p.position[i], p.mass[i]), a))
                 .collect();
             c.force = SVector::zeros();
             c.active = 0;
+            let mut springs = ContactSprings::default();
             for (&i, f) in c.candidates.iter().zip(&forces) {
                 if let Some(f) = f {
                     self.scratch.force[i] += f;
                     c.force -= f;
                     c.active += 1;
+                    let k = body.penalty_of(p.mass[i]);
+                    springs.stiffness += k;
+                    springs.velocity += k * p.velocity[i].dot(&body.planes[0].normal);
                 }
+            }
+            if let Some(bar) = &mut rc.body.motion.bar {
+                if springs.stiffness > 0.0 {
+                    springs.velocity /= springs.stiffness;
+                }
+                // the specimen pushes the face against the axis: compression positive
+                bar.advance(t, dt, -c.force.dot(&bar.axis), springs);
             }
         }
     }

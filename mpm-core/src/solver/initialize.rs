@@ -20,7 +20,7 @@ impl<const D: usize> Solver<D> {
         let stiffest = self
             .rigid
             .iter()
-            .map(|r| r.body.penalty)
+            .map(|r| r.body.penalty_of(lightest))
             .chain(self.springs.iter().map(|s| s.stiffness))
             .fold(0.0, f64::max);
         let spring = (stiffest > 0.0).then_some((stiffest, lightest));

@@ -1,0 +1,201 @@
+//! The MPM model of the SHPB test (thesis chapter 11, issue 11): the specimen as material
+//! points between two rigid faces, s_i on the incident side and s_t on the transmitter
+//! side, with penalty contact and Coulomb friction μ (algorithm 13). Level: axisymmetric,
+//! r across and z along the bars, the transmitter face below the specimen (s_t at the
+//! lowest points, axis +z into the specimen), the incident face above (axis −z).
+//!
+//! Two drives (`Drive`):
+//! - `MeasuredVelocity`, as in the thesis: s_i follows the measured relative face velocity
+//!   v1 − v2 = c0 (ε_i − ε_r − ε_t), s_t is fixed; the model's face forces are compared
+//!   with the processed F1 and F2.
+//! - `IncidentPulse`: both faces sit on elastic bars (`mpm_core::BarEnd`, the bars as 1D
+//!   waveguides coupled through their impedance Z = E_b A_b / c0); only the incident
+//!   pulse at the face drives the model, which then predicts the reflected and
+//!   transmitted pulses ε_r = f_i/(E_b A_b) − ε_i and ε_t = f_t/(E_b A_b), the gauge
+//!   signals themselves.
+//!
+//! Contact: the faces touch the outermost points at t = 0 (no gap to close: the thesis's
+//! coarse B1 run starts late because its first layer is half a spacing from the face).
+//! The penalty is per mass (`RigidBody::penalty_per_mass`), κ = ω_c² m_p with the contact
+//! frequency ω_c = `contact_factor` · c / s (c the specimen's P-wave speed, s the point
+//! spacing): the same for every ring, so the light rings at the axis set neither Δt nor
+//! the pressure distribution. With the default factor 2 the contact layer is 4× as stiff
+//! as one layer of points. Units: SI.
+
+mod run;
+pub mod verify;
+
+pub use run::{FaceHistory, ShpbRun};
+
+use materials::signal::TimeSignal;
+use materials::Material;
+use mpm_core::discretize::{fill, Shape};
+use mpm_core::{BarEnd, Kinematics, RigidBody, Settings, Solver, Template, VelocityBc};
+use nalgebra::Vector2;
+use std::sync::Arc;
+
+/// How the faces move.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Drive {
+    MeasuredVelocity,
+    IncidentPulse,
+}
+
+/// Bars: axial stiffness E_b A_b [N] and wave speed c0 [m/s] (both bars alike).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bars {
+    pub axial_stiffness: f64,
+    pub wave_speed: f64,
+}
+
+/// Specimen cylinder: diameter and length [m].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cylinder {
+    pub diameter: f64,
+    pub length: f64,
+}
+
+/// The measured histories at the specimen faces on one time base [s] from t = 0:
+/// incident strain ε_i (compression positive) and relative face velocity v1 − v2 [m/s].
+#[derive(Debug, Clone, PartialEq)]
+pub struct FaceSignals {
+    pub time_s: Vec<f64>,
+    pub incident: Vec<f64>,
+    pub relative_velocity_m_per_s: Vec<f64>,
+}
+
+/// Discretization and contact of the model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModelSettings {
+    /// Material points along the specimen length (thesis table 11.2: 20, 40, 60).
+    pub layers: usize,
+    /// Coulomb friction μ at both faces [-].
+    pub friction: f64,
+    /// Contact frequency ω_c over c / s [-].
+    pub contact_factor: f64,
+    /// Safety factor on the CFL estimate [-].
+    pub safety: f64,
+    pub drive: Drive,
+}
+
+impl ModelSettings {
+    pub fn new(layers: usize, drive: Drive) -> Self {
+        ModelSettings {
+            layers,
+            friction: 0.1,
+            contact_factor: 2.0,
+            safety: 0.3,
+            drive,
+        }
+    }
+}
+
+/// One SHPB model, discretized once; `run` instantiates it with a material.
+#[derive(Clone)]
+pub struct ShpbModel {
+    template: Template<2>,
+    settings: ModelSettings,
+    signals: FaceSignals,
+    bars: Bars,
+    /// Axial position of the incident face at t = 0 [m].
+    incident_face_z: f64,
+}
+
+/// Name of the specimen body, for `Template::instantiate`.
+pub const SPECIMEN: &str = "specimen";
+/// Rigid bodies: the transmitter face first, then the incident face.
+const TRANSMITTER: usize = 0;
+const INCIDENT: usize = 1;
+
+impl ShpbModel {
+    /// Discretize `cylinder` with `settings.layers` points along its length (two per cell)
+    /// and place the faces; `material` only fixes the wave speed for the contact frequency.
+    pub fn new(
+        cylinder: Cylinder,
+        bars: Bars,
+        signals: FaceSignals,
+        settings: ModelSettings,
+        material: Arc<dyn Material>,
+    ) -> anyhow::Result<Self> {
+        anyhow::ensure!(
+            settings.layers >= 2,
+            "layers = {}: at least 2 points along the specimen",
+            settings.layers
+        );
+        let s = cylinder.length / settings.layers as f64;
+        let mut solver = Solver::new(Settings::<2>::new(Kinematics::Axisymmetric, 2.0 * s));
+        solver.settings.safety = settings.safety;
+        let points = fill(
+            &Shape::Box {
+                min: Vector2::zeros(),
+                max: Vector2::new(0.5 * cylinder.diameter, cylinder.length),
+            },
+            Vector2::repeat(s),
+            Kinematics::Axisymmetric,
+        );
+        let (z_min, z_max) = points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (x, _)| {
+                (lo.min(x[1]), hi.max(x[1]))
+            });
+        let c = (material.p_wave_modulus() / material.density()).sqrt();
+        solver.add_body(SPECIMEN, material, &points, Vector2::zeros());
+        solver.velocity_bcs.push(VelocityBc::axis());
+        let omega = settings.contact_factor * c / s;
+        let face = |name: &str, z: f64, axis: Vector2<f64>| {
+            let mut body = RigidBody::half_space(
+                name,
+                Vector2::new(0.0, z),
+                axis,
+                omega * omega,
+                settings.friction,
+            );
+            body.penalty_per_mass = true;
+            body
+        };
+        let mut transmitter = face("transmitter", z_min, Vector2::y());
+        let mut incident = face("incident", z_max, -Vector2::y());
+        match settings.drive {
+            Drive::MeasuredVelocity => {
+                let v = signals
+                    .relative_velocity_m_per_s
+                    .iter()
+                    .map(|v| Vector2::new(0.0, -v))
+                    .collect();
+                let velocity = TimeSignal::new(signals.time_s.clone(), v)?;
+                incident.motion.translation = Some(velocity.integrated());
+            }
+            Drive::IncidentPulse => {
+                let pulse = TimeSignal::new(signals.time_s.clone(), signals.incident.clone())?;
+                let bar = |axis, incoming| {
+                    BarEnd::new(axis, bars.axial_stiffness, bars.wave_speed, incoming)
+                };
+                incident.motion.bar = Some(bar(-Vector2::y(), Some(pulse)));
+                transmitter.motion.bar = Some(bar(Vector2::y(), None));
+            }
+        }
+        solver.add_rigid_body(transmitter);
+        solver.add_rigid_body(incident);
+        Ok(ShpbModel {
+            template: Template::new(solver)?,
+            settings,
+            signals,
+            bars,
+            incident_face_z: z_max,
+        })
+    }
+
+    pub fn settings(&self) -> &ModelSettings {
+        &self.settings
+    }
+
+    /// Number of material points.
+    pub fn particles(&self) -> usize {
+        self.template.model().particles.len()
+    }
+
+    /// End of the signals [s].
+    pub fn end_s(&self) -> f64 {
+        self.signals.time_s.last().copied().unwrap_or(0.0)
+    }
+}

@@ -1,0 +1,100 @@
+//! One run of an SHPB model with one material: the histories at both faces, recorded
+//! every step in memory (no files).
+
+use super::{Drive, ShpbModel, INCIDENT, SPECIMEN, TRANSMITTER};
+use crate::shpb::signal::interpolate;
+use materials::Material;
+use mpm_core::solver::RigidContact;
+use mpm_core::Solver;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// Histories at the faces, one row per step. Forces and strains compression positive,
+/// velocities along each face's axis into the specimen.
+#[derive(Debug, Clone, Default)]
+pub struct FaceHistory {
+    pub time_s: Vec<f64>,
+    /// Contact force on s_i (model F1) and s_t (model F2) [N].
+    pub force_incident_n: Vec<f64>,
+    pub force_transmitted_n: Vec<f64>,
+    /// Face velocities [m/s].
+    pub velocity_incident_m_per_s: Vec<f64>,
+    pub velocity_transmitted_m_per_s: Vec<f64>,
+    /// Gauge strains the model's forces imply at the faces: ε_r = F1/(E_b A_b) − ε_i and
+    /// ε_t = F2/(E_b A_b) [-] (with the `IncidentPulse` drive, the model's prediction of
+    /// the measured pulses).
+    pub reflected: Vec<f64>,
+    pub transmitted: Vec<f64>,
+    /// Distance between the faces [m].
+    pub length_m: Vec<f64>,
+}
+
+/// A finished run.
+#[derive(Debug, Clone)]
+pub struct ShpbRun {
+    pub history: FaceHistory,
+    pub steps: usize,
+    pub dt_s: f64,
+    pub particles: usize,
+    pub wall_s: f64,
+}
+
+/// Compressive force on a face and its velocity into the specimen.
+fn face_state(rc: &RigidContact<2>, drive_velocity: f64) -> (f64, f64) {
+    let axis = rc.body.planes[0].normal;
+    let force = -rc.contact.force.dot(&axis);
+    let velocity = rc
+        .body
+        .motion
+        .bar
+        .as_ref()
+        .map_or(drive_velocity, |b| b.velocity);
+    (force, velocity)
+}
+
+impl ShpbModel {
+    /// Run the model with `material` over the signals' time span.
+    pub fn run(&self, material: Arc<dyn Material>) -> anyhow::Result<ShpbRun> {
+        let start = Instant::now();
+        let mut solver = self.template.instantiate(&[(SPECIMEN, material)])?;
+        solver.initialize();
+        let mut h = FaceHistory::default();
+        let mut record = |s: &Solver<2>| -> std::io::Result<()> {
+            self.record(s, &mut h);
+            Ok(())
+        };
+        record(&solver)?;
+        solver.run_until(self.end_s(), &mut [&mut record])?;
+        Ok(ShpbRun {
+            history: h,
+            steps: solver.step,
+            dt_s: solver.dt,
+            particles: solver.particles.len(),
+            wall_s: start.elapsed().as_secs_f64(),
+        })
+    }
+
+    fn record(&self, s: &Solver<2>, h: &mut FaceHistory) {
+        let t = s.time;
+        let at = |values: &[f64]| interpolate(&self.signals.time_s, values, t);
+        let drive = match self.settings.drive {
+            Drive::MeasuredVelocity => at(&self.signals.relative_velocity_m_per_s),
+            Drive::IncidentPulse => 0.0,
+        };
+        let (f_i, v_i) = face_state(&s.rigid[INCIDENT], drive);
+        let (f_t, v_t) = face_state(&s.rigid[TRANSMITTER], 0.0);
+        let ea = self.bars.axial_stiffness;
+        let z = |k: usize| s.rigid[k].body.motion.pose(t).translation[1];
+        h.time_s.push(t);
+        h.force_incident_n.push(f_i);
+        h.force_transmitted_n.push(f_t);
+        h.velocity_incident_m_per_s.push(v_i);
+        h.velocity_transmitted_m_per_s.push(v_t);
+        h.reflected.push(f_i / ea - at(&self.signals.incident));
+        h.transmitted.push(f_t / ea);
+        h.length_m.push(
+            self.incident_face_z + z(INCIDENT)
+                - (s.rigid[TRANSMITTER].body.planes[0].point[1] + z(TRANSMITTER)),
+        );
+    }
+}
