@@ -9,5 +9,6 @@ pub mod predict;
 pub mod progress;
 pub mod shpb;
 pub mod simulate;
+pub mod simulate_shpb;
 pub mod synth;
 pub mod verify;

@@ -15,19 +15,37 @@ pub struct Args {
     /// Output directory (default: out/<scene name>).
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// SHPB scenes: the material parameters of a fit report (report.toml) or a material
+    /// file instead of the scene's material.
+    #[arg(long)]
+    pub params: Option<PathBuf>,
+    /// SHPB scenes: run these point counts along the specimen (e.g. 10,20,40,80) instead
+    /// of the scene's, and report each against the finest (accuracy against cost).
+    #[arg(long, value_delimiter = ',')]
+    pub refine: Vec<usize>,
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let scene = mpm_core::scene::load(&args.scene)?;
-    for line in scene.describe() {
-        println!("{line}");
-    }
     let name = args
         .scene
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "scene".into());
     let out = args.out.unwrap_or_else(|| Path::new("out").join(&name));
+    if crate::shpb_model::scene::is_shpb_scene(&args.scene) {
+        let params = args.params.as_deref();
+        return match args.refine.is_empty() {
+            true => super::simulate_shpb::run(&args.scene, params, &out),
+            false => super::simulate_shpb::refine(&args.scene, params, &args.refine, &out),
+        };
+    }
+    if args.params.is_some() || !args.refine.is_empty() {
+        anyhow::bail!("--params and --refine are for SHPB scenes (kind = \"shpb\"); {} is an MPM scene with its materials inside", args.scene.display());
+    }
+    let scene = mpm_core::scene::load(&args.scene)?;
+    for line in scene.describe() {
+        println!("{line}");
+    }
     let bar = ProgressBar::new(1000);
     bar.set_style(ProgressStyle::with_template(
         "{bar:40} {percent:>3}% t = {msg} [{elapsed} < {eta}]",

@@ -4,6 +4,7 @@
 use super::{Drive, ShpbModel, INCIDENT, SPECIMEN, TRANSMITTER};
 use crate::shpb::signal::interpolate;
 use materials::Material;
+use mpm_core::observer::Observer;
 use mpm_core::solver::RigidContact;
 use mpm_core::Solver;
 use std::sync::Arc;
@@ -55,16 +56,37 @@ fn face_state(rc: &RigidContact<2>, drive_velocity: f64) -> (f64, f64) {
 impl ShpbModel {
     /// Run the model with `material` over the signals' time span.
     pub fn run(&self, material: Arc<dyn Material>) -> anyhow::Result<ShpbRun> {
+        self.run_observed(material, &mut [])
+    }
+
+    /// `run`, also reporting every step (and the initial state) to `observers` (VTK
+    /// snapshots, progress).
+    pub fn run_observed(
+        &self,
+        material: Arc<dyn Material>,
+        observers: &mut [&mut (dyn Observer<2> + Send)],
+    ) -> anyhow::Result<ShpbRun> {
+        // a few thousand points: one thread, inside its own pool, so that the parallel
+        // loops of a step run inline instead of waking threads (issue 15)
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+        pool.install(|| self.run_inline(material, observers))
+    }
+
+    fn run_inline(
+        &self,
+        material: Arc<dyn Material>,
+        observers: &mut [&mut (dyn Observer<2> + Send)],
+    ) -> anyhow::Result<ShpbRun> {
         let start = Instant::now();
         let mut solver = self.template.instantiate(&[(SPECIMEN, material)])?;
         solver.initialize();
         let mut h = FaceHistory::default();
-        let mut record = |s: &Solver<2>| -> std::io::Result<()> {
+        let mut each = |s: &Solver<2>| -> std::io::Result<()> {
             self.record(s, &mut h);
-            Ok(())
+            observers.iter_mut().try_for_each(|o| o.observe(s))
         };
-        record(&solver)?;
-        solver.run_until(self.end_s(), &mut [&mut record])?;
+        each(&solver)?;
+        solver.run_until(self.end_s(), &mut [&mut each])?;
         Ok(ShpbRun {
             history: h,
             steps: solver.step,

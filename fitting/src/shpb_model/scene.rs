@@ -1,0 +1,179 @@
+//! An SHPB scene file: the MPM model of one SHPB record (`mpw simulate` runs it). Paths
+//! are relative to the scene file.
+//!
+//! ```toml
+//! kind = "shpb"
+//! experiment = "../experiments/shpb_steel_945/test_01.toml"  # its processed face signals drive the model
+//! material = "../materials/steel_945.toml"                    # Johnson-Cook file or fit report (with --params)
+//! level = "mpm-axisymmetric"
+//! drive = "incident-pulse"        # or "measured-velocity" (the thesis's)
+//! layers = 20                     # points along the specimen (thesis B1-B3: 20, 40, 60)
+//! friction = 0.1                  # Coulomb μ at both faces
+//! contact_factor = 1.0            # contact frequency ω_c over c/s
+//! safety = 0.3                    # CFL safety factor
+//! ```
+
+use super::{Bars, Cylinder, Drive, FaceSignals, ModelSettings, ShpbModel};
+use crate::experiment::ShpbExperiment;
+use crate::fit::preheated::Preheated;
+use crate::shpb::{analyze, ShpbAnalysis};
+use anyhow::{bail, Context, Result};
+use materials::plasticity::ElastoPlastic;
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneFile {
+    kind: String,
+    experiment: PathBuf,
+    material: PathBuf,
+    level: String,
+    drive: String,
+    layers: usize,
+    #[serde(default = "default_friction")]
+    friction: f64,
+    #[serde(default = "default_contact_factor")]
+    contact_factor: f64,
+    #[serde(default = "default_safety")]
+    safety: f64,
+}
+
+fn default_friction() -> f64 {
+    0.1
+}
+fn default_contact_factor() -> f64 {
+    1.0
+}
+fn default_safety() -> f64 {
+    0.3
+}
+
+/// A loaded SHPB scene: the record, its processed face signals and the model settings.
+#[derive(Clone)]
+pub struct ShpbScene {
+    pub experiment: ShpbExperiment,
+    pub analysis: ShpbAnalysis,
+    pub material_file: PathBuf,
+    pub settings: ModelSettings,
+}
+
+/// Whether `path` is an SHPB scene (`kind = "shpb"`) rather than an mpm-core scene.
+pub fn is_shpb_scene(path: &Path) -> bool {
+    std::fs::read_to_string(path)
+        .ok()
+        .and_then(|t| t.parse::<toml::Table>().ok())
+        .and_then(|t| t.get("kind").and_then(|k| k.as_str().map(|k| k == "shpb")))
+        .unwrap_or(false)
+}
+
+impl ShpbScene {
+    pub fn load(path: &Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("{}: cannot read", path.display()))?;
+        let f: SceneFile =
+            toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        let field = |name: &str, problem: String| {
+            anyhow::anyhow!("{}: field `{name}`: {problem}", path.display())
+        };
+        if f.kind != "shpb" {
+            bail!(field("kind", format!("\"{}\", expected \"shpb\"", f.kind)));
+        }
+        if f.level != "mpm-axisymmetric" {
+            bail!(field(
+                "level",
+                format!("\"{}\": the levels built so far are \"mpm-axisymmetric\" (3D quarter and full 3D are not built yet)", f.level)
+            ));
+        }
+        let drive = match f.drive.as_str() {
+            "incident-pulse" => Drive::IncidentPulse,
+            "measured-velocity" => Drive::MeasuredVelocity,
+            other => bail!(field(
+                "drive",
+                format!("\"{other}\", expected \"incident-pulse\" or \"measured-velocity\"")
+            )),
+        };
+        if !(2..=2000).contains(&f.layers) {
+            bail!(field(
+                "layers",
+                format!("{} points along the specimen, expected 2 to 2000", f.layers)
+            ));
+        }
+        if !(0.0..=1.0).contains(&f.friction) {
+            bail!(field(
+                "friction",
+                format!(
+                    "{}, expected a Coulomb coefficient between 0 and 1",
+                    f.friction
+                )
+            ));
+        }
+        if !(f.contact_factor > 0.1 && f.contact_factor <= 10.0) {
+            bail!(field(
+                "contact_factor",
+                format!(
+                    "{}, expected 0.1 < factor <= 10 (1 is the default)",
+                    f.contact_factor
+                )
+            ));
+        }
+        if !(f.safety > 0.0 && f.safety <= 1.0) {
+            bail!(field(
+                "safety",
+                format!("{}, expected 0 < safety <= 1", f.safety)
+            ));
+        }
+        let dir = path.parent().unwrap_or(Path::new("."));
+        let experiment = ShpbExperiment::load(&dir.join(&f.experiment))?;
+        let analysis = analyze(&experiment)
+            .with_context(|| format!("processing {}", experiment.data_file.display()))?;
+        let mut settings = ModelSettings::new(f.layers, drive);
+        settings.friction = f.friction;
+        settings.contact_factor = f.contact_factor;
+        settings.safety = f.safety;
+        Ok(ShpbScene {
+            experiment,
+            analysis,
+            material_file: dir.join(&f.material),
+            settings,
+        })
+    }
+
+    /// The measured histories at the faces, from the processed record.
+    pub fn signals(&self) -> FaceSignals {
+        FaceSignals {
+            time_s: self.analysis.time_s.clone(),
+            incident: self.analysis.incident.clone(),
+            relative_velocity_m_per_s: self.analysis.relative_velocity_m_per_s.clone(),
+        }
+    }
+
+    /// The model of this record with `material`, which starts at the test temperature.
+    pub fn model(&self, material: &ElastoPlastic) -> Result<ShpbModel> {
+        let bar = &self.experiment.bar;
+        let bars = Bars {
+            axial_stiffness: bar.elastic_modulus_pa * bar.area_m2(),
+            wave_speed: bar.wave_speed_m_per_s(),
+        };
+        let specimen = &self.experiment.specimen;
+        let cylinder = Cylinder {
+            diameter: specimen.diameter_m,
+            length: specimen.length_m,
+        };
+        ShpbModel::new(
+            cylinder,
+            bars,
+            self.signals(),
+            self.settings,
+            self.material(material),
+        )
+    }
+
+    /// `material` starting at the test temperature.
+    pub fn material(&self, material: &ElastoPlastic) -> std::sync::Arc<dyn materials::Material> {
+        std::sync::Arc::new(Preheated {
+            inner: *material,
+            theta_start: self.experiment.temperature_k,
+        })
+    }
+}
