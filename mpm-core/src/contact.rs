@@ -12,7 +12,7 @@
 //! motion until the next search); every step the exact inside test runs on the candidates.
 
 use crate::rigid::{Pose, RigidBody};
-use nalgebra::SVector;
+use nalgebra::{Matrix3, SVector};
 
 /// Algorithm 13 (body frame): penalty force on a point at `x_mp` whose closest surface
 /// point is `x_c`, updating the attachment point `x_a` [N].
@@ -84,16 +84,42 @@ impl<const D: usize> ContactState<D> {
     }
 }
 
-/// Exact check and penalty force for one candidate of mass `mass` at world position `x`:
-/// returns the force on the particle (world frame), updating or clearing its attachment.
+/// A candidate point: its centre x [m], mass [kg], deformation gradient F and reference
+/// domain half-widths a [m].
+#[derive(Clone, Copy)]
+pub struct Candidate<'a, const D: usize> {
+    pub x: &'a SVector<f64, D>,
+    pub mass: f64,
+    pub f: &'a Matrix3<f64>,
+    pub half_size: &'a SVector<f64, D>,
+}
+
+impl<const D: usize> Candidate<'_, D> {
+    /// How far the point's current domain F·box(a) reaches from its centre along the unit
+    /// vector `n`: Σ_i a_i |(Fᵀ n)_i| (the support function of the parallelogram or
+    /// parallelepiped; 0 for a point without a domain).
+    #[inline]
+    pub fn reach(&self, n: &SVector<f64, D>) -> f64 {
+        (0..D)
+            .map(|i| self.half_size[i] * (0..D).map(|j| self.f[(j, i)] * n[j]).sum::<f64>().abs())
+            .sum()
+    }
+}
+
+/// Exact check and penalty force for one candidate: returns the force on the particle
+/// (world frame), updating or clearing its attachment. The surface acts on the nearest
+/// point of the candidate's domain, x − reach(n) n (the centre when it has no domain).
 #[inline]
 pub fn candidate_force<const D: usize>(
     body: &RigidBody<D>,
     pose: &Pose<D>,
-    (x, mass): (&SVector<f64, D>, f64),
+    point: Candidate<'_, D>,
     attachment: &mut Option<SVector<f64, D>>,
 ) -> Option<SVector<f64, D>> {
-    let xb = pose.to_body(x);
+    let centre = pose.to_body(point.x);
+    let (_, plane) = body.nearest_plane(&centre);
+    let reach = point.reach(&(pose.rotation * plane.normal));
+    let xb = centre - plane.normal * reach;
     let (d, plane) = body.nearest_plane(&xb);
     if d >= 0.0 {
         *attachment = None;
@@ -101,7 +127,7 @@ pub fn candidate_force<const D: usize>(
     }
     let xc = xb - plane.normal * d;
     let xa = attachment.get_or_insert(xc);
-    let f = penalty_force(&xb, &xc, xa, body.penalty_of(mass), body.friction);
+    let f = penalty_force(&xb, &xc, xa, body.penalty_of(point.mass), body.friction);
     Some(pose.rotation * f)
 }
 

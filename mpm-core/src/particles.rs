@@ -24,6 +24,11 @@ pub struct Particles<const D: usize> {
     pub applied_force: Vec<SVector<f64, D>>,
     /// Index of the body (= material block) the particle belongs to.
     pub body: Vec<u32>,
+    /// Half-widths a_i of the point's box-shaped domain in the reference configuration
+    /// [m] (the domain vectors of CPDI, eq. 10.4, are F a_i e_i); zero for a point whose
+    /// domain is not given. Contact uses it: a rigid surface touches the domain, not the
+    /// centre (module `contact`).
+    pub half_size: Vec<SVector<f64, D>>,
 }
 
 impl<const D: usize> Particles<D> {
@@ -54,11 +59,12 @@ impl<const D: usize> Particles<D> {
         self.stress.push(Matrix3::zeros());
         self.applied_force.push(SVector::zeros());
         self.body.push(body);
+        self.half_size.push(SVector::zeros());
     }
 
     /// Bytes of particle storage per particle (excluding material history and solver
     /// scratch).
-    pub const BYTES_PER_PARTICLE: usize = 4 * std::mem::size_of::<SVector<f64, D>>()
+    pub const BYTES_PER_PARTICLE: usize = 5 * std::mem::size_of::<SVector<f64, D>>()
         + 3 * std::mem::size_of::<f64>()
         + 2 * std::mem::size_of::<Matrix3<f64>>()
         + std::mem::size_of::<u32>();

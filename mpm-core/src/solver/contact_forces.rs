@@ -6,7 +6,7 @@
 
 use super::Solver;
 use crate::bar::ContactSprings;
-use crate::contact::candidate_force;
+use crate::contact::{candidate_force, Candidate};
 use nalgebra::SVector;
 use rayon::prelude::*;
 
@@ -71,7 +71,15 @@ impl<const D: usize> Solver<D> {
                 .candidates
                 .par_iter()
                 .zip(c.attachment.par_iter_mut())
-                .map(|(&i, a)| candidate_force(body, &pose, (&p.position[i], p.mass[i]), a))
+                .map(|(&i, a)| {
+                    let point = Candidate {
+                        x: &p.position[i],
+                        mass: p.mass[i],
+                        f: &p.deformation[i],
+                        half_size: &p.half_size[i],
+                    };
+                    candidate_force(body, &pose, point, a)
+                })
                 .collect();
             c.force = SVector::zeros();
             c.active = 0;

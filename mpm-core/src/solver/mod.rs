@@ -146,6 +146,13 @@ impl<const D: usize> Solver<D> {
         block
     }
 
+    /// Give every point of block `block` the reference domain half-widths `half` [m]
+    /// (half the lattice spacing of a filled body).
+    pub fn set_half_size(&mut self, block: usize, half: SVector<f64, D>) {
+        let range = self.blocks[block].range.clone();
+        self.particles.half_size[range].fill(half);
+    }
+
     pub fn add_rigid_body(&mut self, body: RigidBody<D>) {
         self.rigid.push(RigidContact {
             body,
