@@ -36,8 +36,14 @@ pub struct Stencil<'a, const D: usize> {
 }
 
 impl<const D: usize> WeightCache<D> {
-    /// Evaluate kernel `K` at every position on `grid` (fitted to hold the stencils).
-    pub fn compute<K: Kernel<D>>(&mut self, grid: &Grid<D>, positions: &[SVector<f64, D>]) {
+    /// Evaluate kernel `K` at every position on `grid` (fitted to hold the stencils), for
+    /// points with domain half-widths `half` [m].
+    pub fn compute<K: Kernel<D>>(
+        &mut self,
+        grid: &Grid<D>,
+        positions: &[SVector<f64, D>],
+        half: &[SVector<f64, D>],
+    ) {
         let nodes = K::NODES;
         self.nodes = nodes;
         self.support = K::SUPPORT;
@@ -48,13 +54,15 @@ impl<const D: usize> WeightCache<D> {
         self.grad.resize(positions.len() * nodes, SVector::zeros());
         positions
             .par_iter()
+            .zip(half.par_iter())
             .zip(self.first.par_iter_mut())
             .zip(self.n.par_chunks_mut(nodes))
             .zip(self.grad.par_chunks_mut(nodes))
-            .for_each(|(((x, first), n), grad)| {
+            .for_each(|((((x, half), first), n), grad)| {
                 let (corner, xi) = grid.locate(x);
-                *first = corner - pad;
-                K::evaluate(&xi, &grid.inv_spacing, n, grad);
+                let shift = K::evaluate(&xi, half, &grid.inv_spacing, n, grad);
+                let shift: usize = (0..D).map(|k| shift[k] * grid.strides[k]).sum();
+                *first = corner - pad + shift;
             });
     }
 
@@ -116,7 +124,7 @@ mod tests {
         g.fit([0, 0, 0], [3, 3, 3], 0, 2);
         let x = vec![Vector3::new(0.6, 0.3, 2.2), Vector3::new(1.9, 0.01, 0.5)];
         let mut cache = WeightCache::default();
-        cache.compute::<Linear>(&g, &x);
+        cache.compute::<Linear>(&g, &x, &[Vector3::zeros(); 2]);
         let offsets = g.corner_offsets();
         for (i, x) in x.iter().enumerate() {
             let (base, xi) = g.locate(x);

@@ -43,6 +43,7 @@ pub use run::{FaceHistory, ShpbRun};
 use materials::signal::TimeSignal;
 use materials::Material;
 use mpm_core::discretize::{fill, Shape};
+use mpm_core::shape::ShapeFunction;
 use mpm_core::{BarEnd, Kinematics, RigidBody, Settings, Solver, Template, VelocityBc};
 use nalgebra::Vector2;
 use std::sync::Arc;
@@ -89,6 +90,8 @@ pub struct ModelSettings {
     /// Safety factor on the CFL estimate [-].
     pub safety: f64,
     pub drive: Drive,
+    /// Shape functions of the grid (linear, or uGIMP with the points' lattice domains).
+    pub shape_function: ShapeFunction,
 }
 
 impl ModelSettings {
@@ -99,6 +102,7 @@ impl ModelSettings {
             contact_factor: 1.0,
             safety: 0.3,
             drive,
+            shape_function: ShapeFunction::Linear,
         }
     }
 }
@@ -138,6 +142,7 @@ impl ShpbModel {
         let s = cylinder.length / settings.layers as f64;
         let mut solver = Solver::new(Settings::<2>::new(Kinematics::Axisymmetric, 2.0 * s));
         solver.settings.safety = settings.safety;
+        solver.settings.shape_function = settings.shape_function;
         let points = fill(
             &Shape::Box {
                 min: Vector2::zeros(),

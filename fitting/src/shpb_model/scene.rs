@@ -11,6 +11,7 @@
 //! friction = 0.1                  # Coulomb μ at both faces
 //! contact_factor = 1.0            # contact frequency ω_c over c/s
 //! safety = 0.3                    # CFL safety factor
+//! shape_function = "linear"       # or "ugimp" (uniform GIMP on the points' lattice domains)
 //! ```
 
 use super::{Bars, Cylinder, Drive, FaceSignals, ModelSettings, ShpbModel};
@@ -19,6 +20,7 @@ use crate::fit::preheated::Preheated;
 use crate::shpb::{analyze, ShpbAnalysis};
 use anyhow::{bail, Context, Result};
 use materials::plasticity::ElastoPlastic;
+use mpm_core::shape::ShapeFunction;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -37,6 +39,12 @@ struct SceneFile {
     contact_factor: f64,
     #[serde(default = "default_safety")]
     safety: f64,
+    #[serde(default = "default_shape_function")]
+    shape_function: String,
+}
+
+fn default_shape_function() -> String {
+    "linear".into()
 }
 
 fn default_friction() -> f64 {
@@ -123,6 +131,14 @@ impl ShpbScene {
                 format!("{}, expected 0 < safety <= 1", f.safety)
             ));
         }
+        let shape_function = match f.shape_function.as_str() {
+            "linear" => ShapeFunction::Linear,
+            "ugimp" => ShapeFunction::UGimp,
+            other => bail!(field(
+                "shape_function",
+                format!("\"{other}\", expected \"linear\" or \"ugimp\"")
+            )),
+        };
         let dir = path.parent().unwrap_or(Path::new("."));
         let experiment = ShpbExperiment::load(&dir.join(&f.experiment))?;
         let analysis = analyze(&experiment)
@@ -131,6 +147,7 @@ impl ShpbScene {
         settings.friction = f.friction;
         settings.contact_factor = f.contact_factor;
         settings.safety = f.safety;
+        settings.shape_function = shape_function;
         Ok(ShpbScene {
             experiment,
             analysis,

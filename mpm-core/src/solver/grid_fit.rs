@@ -4,7 +4,7 @@
 
 use super::Solver;
 use crate::failure::{Cause, SimulationError};
-use crate::shape::{Kernel, Linear};
+use crate::shape::{Kernel, Linear, ShapeFunction, UGimp};
 use materials::limits::GRID_NODES;
 use nalgebra::SVector;
 use rayon::prelude::*;
@@ -38,7 +38,10 @@ impl<const D: usize> Solver<D> {
                 |a, b| (a.0.inf(&b.0), a.1.sup(&b.1)),
             );
         let (cmin, cmax) = (self.grid.cell_of(&lo), self.grid.cell_of(&hi));
-        let (pad, support) = (<Linear as Kernel<D>>::PAD, <Linear as Kernel<D>>::SUPPORT);
+        let (pad, support) = match self.settings.shape_function {
+            ShapeFunction::Linear => reach::<Linear, D>(),
+            ShapeFunction::UGimp => reach::<UGimp, D>(),
+        };
         let nodes: f64 = (0..D)
             .map(|i| cmax[i] as f64 - cmin[i] as f64 + support as f64)
             .product();
@@ -51,9 +54,23 @@ impl<const D: usize> Solver<D> {
             return Err(self.failure(None, Cause::GridTooLarge(e)));
         }
         self.grid.fit(cmin, cmax, pad, support);
-        let s = &mut self.scratch;
-        s.weights
-            .compute::<Linear>(&self.grid, &self.particles.position);
+        let (s, p) = (&mut self.scratch, &self.particles);
+        match self.settings.shape_function {
+            ShapeFunction::Linear => {
+                s.weights
+                    .compute::<Linear>(&self.grid, &p.position, &p.half_size)
+            }
+            ShapeFunction::UGimp => {
+                s.weights
+                    .compute::<UGimp>(&self.grid, &p.position, &p.half_size)
+            }
+        }
         Ok(())
     }
+}
+
+/// Nodes below a cell's lower corner and nodes per axis that a kernel's stencils cover,
+/// over every shift: what the grid must hold around the points' cells.
+fn reach<K: Kernel<D>, const D: usize>() -> (usize, usize) {
+    (K::PAD, K::SUPPORT + K::SHIFT)
 }

@@ -3,6 +3,7 @@
 
 use super::Scheme;
 use crate::kinematics::Kinematics;
+use crate::shape::ShapeFunction;
 use crate::viscosity::BulkViscosity;
 use nalgebra::SVector;
 
@@ -11,6 +12,8 @@ use nalgebra::SVector;
 pub struct Settings<const D: usize> {
     pub kinematics: Kinematics,
     pub scheme: Scheme,
+    /// Shape functions (module `shape`).
+    pub shape_function: ShapeFunction,
     /// Cell size h_i [m].
     pub spacing: SVector<f64, D>,
     /// Lattice origin ō [m].
@@ -58,6 +61,7 @@ impl<const D: usize> Settings<D> {
         Settings {
             kinematics,
             scheme: Scheme::Musl,
+            shape_function: ShapeFunction::Linear,
             spacing: SVector::repeat(spacing),
             origin: SVector::zeros(),
             body_force: SVector::zeros(),

@@ -1,0 +1,81 @@
+//! The MPM model of an SHPB record (`fitting::shpb_model`) on the 945 test 01 record of
+//! the shared data: the measured-velocity drive reproduces the record's specimen length,
+//! the incident-pulse drive the record's force level; scene files with bad fields are
+//! refused with the field named.
+
+mod common;
+
+use fitting::shpb_model::scene::ShpbScene;
+use fitting::shpb_model::Drive;
+use std::path::{Path, PathBuf};
+
+fn scene_file() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/scenes/shpb/945_test01.toml")
+}
+
+fn scene(drive: Drive) -> Option<ShpbScene> {
+    let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data/shpb/steel_945");
+    if !shared.is_dir() {
+        common::skip("../shared/data/shpb/steel_945");
+        return None;
+    }
+    let mut s = ShpbScene::load(&scene_file()).unwrap();
+    s.settings.layers = 10;
+    s.settings.drive = drive;
+    Some(s)
+}
+
+/// The faces act on the points' domains, so the gap between them is the specimen length:
+/// with the measured drive it must follow the record's L(t) = L0 − ∫ (v1 − v2) dt. The
+/// two integrations differ only by the trapezoid rule against the analysis's sum over
+/// the same samples: 1e-4 of L0.
+#[test]
+fn the_measured_drive_reproduces_the_specimen_length_of_the_record() {
+    let Some(s) = scene(Drive::MeasuredVelocity) else {
+        return;
+    };
+    let material = materials::load_elasto_plastic(&s.material_file).unwrap();
+    let run = s
+        .model(&material)
+        .unwrap()
+        .run(s.material(&material))
+        .unwrap();
+    let h = &run.history;
+    let l0 = s.experiment.specimen.length_m;
+    assert_eq!(h.length_m[0], l0);
+    let end = *h.time_s.last().unwrap();
+    let k = s.analysis.time_s.partition_point(|&t| t <= end) - 1;
+    let measured = s.analysis.specimen_length_m[k];
+    let model = h.length_m[h.length_m.len() - 1];
+    assert!(
+        (model - measured).abs() < 1e-4 * l0,
+        "final length: model {model} m, record {measured} m"
+    );
+}
+
+#[test]
+fn a_scene_with_a_bad_field_names_it() {
+    let text = std::fs::read_to_string(scene_file()).unwrap();
+    let dir = std::env::temp_dir().join(format!("mpw-shpb-scene-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (from, to, expect) in [
+        (
+            "drive = \"incident-pulse\"",
+            "drive = \"pulse\"",
+            "field `drive`",
+        ),
+        (
+            "level = \"mpm-axisymmetric\"",
+            "level = \"mpm-3d\"",
+            "field `level`",
+        ),
+        ("friction = 0.1", "friction = 1.5", "field `friction`"),
+        ("layers = 20", "layers = 1", "field `layers`"),
+    ] {
+        let file = dir.join("scene.toml");
+        std::fs::write(&file, text.replace(from, to)).unwrap();
+        let e = ShpbScene::load(&file).err().expect(to).to_string();
+        assert!(e.contains(expect) && e.contains("scene.toml"), "{to}: {e}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
