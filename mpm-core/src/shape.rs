@@ -269,14 +269,14 @@ mod tests {
                 let mut n0 = vec![0.0; nodes];
                 let mut g0 = vec![SVector::zeros(); nodes];
                 let s0 = UGimp::evaluate(&xi, &SVector::zeros(), &inv_h, &mut n0, &mut g0);
-                for m in 0..nodes {
+                for (m, weight) in n0.iter().enumerate() {
                     let hat: f64 = (0..D)
                         .map(|k| {
                             let r = xi[k] - ((m / 3usize.pow(k as u32) % 3 + s0[k]) as f64 - 1.0);
                             (1.0 - r.abs()).max(0.0)
                         })
                         .product();
-                    assert!((n0[m] - hat).abs() < 1e-15);
+                    assert!((weight - hat).abs() < 1e-15);
                 }
             }
         }
