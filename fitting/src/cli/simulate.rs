@@ -23,6 +23,10 @@ pub struct Args {
     /// of the scene's, and report each against the finest (accuracy against cost).
     #[arg(long, value_delimiter = ',')]
     pub refine: Vec<usize>,
+    /// SHPB scenes: also run with the penalty stiffness and the friction each halved and
+    /// doubled, and report how far the transmitter-face force moves.
+    #[arg(long)]
+    pub sensitivity: bool,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -35,12 +39,12 @@ pub fn run(args: Args) -> Result<()> {
     if crate::shpb_model::scene::is_shpb_scene(&args.scene) {
         let params = args.params.as_deref();
         return match args.refine.is_empty() {
-            true => super::simulate_shpb::run(&args.scene, params, &out),
+            true => super::simulate_shpb::run(&args.scene, params, &out, args.sensitivity),
             false => super::simulate_shpb::refine(&args.scene, params, &args.refine, &out),
         };
     }
-    if args.params.is_some() || !args.refine.is_empty() {
-        anyhow::bail!("--params and --refine are for SHPB scenes (kind = \"shpb\"); {} is an MPM scene with its materials inside", args.scene.display());
+    if args.params.is_some() || !args.refine.is_empty() || args.sensitivity {
+        anyhow::bail!("--params, --refine and --sensitivity are for SHPB scenes (kind = \"shpb\"); {} is an MPM scene with its materials inside", args.scene.display());
     }
     let scene = mpm_core::scene::load(&args.scene)?;
     for line in scene.describe() {

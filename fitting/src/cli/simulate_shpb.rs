@@ -8,7 +8,7 @@ use crate::chart::{LineChart, Series};
 use crate::fit::report::read_parameters;
 use crate::shpb::signal::interpolate;
 use crate::shpb_model::scene::ShpbScene;
-use crate::shpb_model::study::{refinement, Level};
+use crate::shpb_model::study::{contact_sensitivity, refinement, Level};
 use crate::shpb_model::{Drive, ShpbRun};
 use anyhow::{Context, Result};
 use materials::plasticity::ElastoPlastic;
@@ -102,7 +102,7 @@ pub fn refine(
     Ok(())
 }
 
-pub fn run(scene_file: &Path, params: Option<&Path>, out: &Path) -> Result<()> {
+pub fn run(scene_file: &Path, params: Option<&Path>, out: &Path, sensitivity: bool) -> Result<()> {
     let (scene, material) = load(scene_file, params)?;
     let model = scene.model(&material)?;
     let (e, s) = (&scene.experiment, &scene.settings);
@@ -161,6 +161,17 @@ pub fn run(scene_file: &Path, params: Option<&Path>, out: &Path) -> Result<()> {
         "history.csv, snapshots, forces.png and pulses.png in {}",
         out.display()
     );
+    if sensitivity {
+        println!("contact parameters (F2 over the plateau, against the run above):");
+        for v in contact_sensitivity(&scene, &material)? {
+            println!(
+                "  {:<44} mean {:+.2} %, RMS change {:.2} %",
+                v.label,
+                100.0 * v.mean_change,
+                100.0 * v.rms_change
+            );
+        }
+    }
     Ok(())
 }
 

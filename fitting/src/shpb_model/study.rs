@@ -78,3 +78,65 @@ pub fn refinement(
         })
         .collect())
 }
+
+/// One variant of the contact parameters and how far its forces move from the base run.
+#[derive(Debug, Clone)]
+pub struct Variant {
+    pub label: String,
+    /// Mean F2 over the plateau relative to the base run's, minus 1 [-].
+    pub mean_change: f64,
+    /// RMS of F2 − F2_base over the plateau relative to the base run's mean [-].
+    pub rms_change: f64,
+}
+
+/// How much the face force moves when the penalty stiffness κ and the friction μ are each
+/// halved and doubled (κ ∝ ω_c², so the contact factor moves by √2).
+pub fn contact_sensitivity(scene: &ShpbScene, material: &ElastoPlastic) -> Result<Vec<Variant>> {
+    let run = |settings| -> Result<ShpbRun> {
+        let with = ShpbScene {
+            settings,
+            ..scene.clone()
+        };
+        with.model(material)?.run(with.material(material))
+    };
+    let base = scene.settings;
+    let reference = run(base)?;
+    let a = &scene.analysis;
+    let times: Vec<f64> = a.plateau.range.clone().map(|k| a.time_s[k]).collect();
+    let r = &reference.history;
+    let mean = |h: &super::FaceHistory| {
+        times
+            .iter()
+            .map(|&t| interpolate(&h.time_s, &h.force_transmitted_n, t))
+            .sum::<f64>()
+            / times.len() as f64
+    };
+    let base_mean = mean(r);
+    let variants = [
+        ("κ / 2", 0.5f64.sqrt(), 1.0),
+        ("κ × 2", 2f64.sqrt(), 1.0),
+        ("μ / 2", 1.0, 0.5),
+        ("μ × 2", 1.0, 2.0),
+    ];
+    variants
+        .iter()
+        .map(|&(label, contact, friction)| {
+            let mut s = base;
+            s.contact_factor *= contact;
+            s.friction *= friction;
+            let h = run(s)?.history;
+            Ok(Variant {
+                label: format!(
+                    "{label} (contact factor {:.3}, μ = {:.3})",
+                    s.contact_factor, s.friction
+                ),
+                mean_change: mean(&h) / base_mean - 1.0,
+                rms_change: relative_rms(
+                    &times,
+                    (&h.time_s, &h.force_transmitted_n),
+                    (&r.time_s, &r.force_transmitted_n),
+                ),
+            })
+        })
+        .collect()
+}
