@@ -18,6 +18,18 @@ pub struct CaseResult {
     pub info: bool,
 }
 
+/// A tolerance in the fewest significant digits (one to three) that still show its value
+/// to 1 %: 1e-9, 2.5e-3, 1.6e-2, 1.27e-2.
+fn short(tol: f64) -> String {
+    (0..3)
+        .map(|digits| format!("{tol:.digits$e}"))
+        .find(|text| {
+            text.parse::<f64>()
+                .is_ok_and(|v| (v - tol).abs() <= 0.01 * tol.abs())
+        })
+        .unwrap_or_else(|| format!("{tol:.2e}"))
+}
+
 impl CaseResult {
     /// Pass if |measured − reference| ≤ tol · |reference|.
     pub fn relative(name: impl Into<String>, measured: f64, reference: f64, tol: f64) -> Self {
@@ -26,7 +38,7 @@ impl CaseResult {
             name: name.into(),
             measured,
             reference,
-            tolerance: format!("rel {tol:.0e}"),
+            tolerance: format!("rel {}", short(tol)),
             passed,
             info: false,
         }
@@ -39,7 +51,7 @@ impl CaseResult {
             name: name.into(),
             measured,
             reference,
-            tolerance: format!("abs {tol:.1e}"),
+            tolerance: format!("abs {}", short(tol)),
             passed,
             info: false,
         }
@@ -52,7 +64,7 @@ impl CaseResult {
             name: name.into(),
             measured,
             reference: 0.0,
-            tolerance: format!("<= {bound:.1e}"),
+            tolerance: format!("<= {}", short(bound)),
             passed,
             info: false,
         }
@@ -105,5 +117,19 @@ impl fmt::Display for CaseResult {
                 (false, false) => "FAIL",
             }
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::short;
+
+    #[test]
+    fn tolerances_print_as_short_as_their_value_allows() {
+        assert_eq!(short(1e-9), "1e-9");
+        assert_eq!(short(2.5e-3), "2.5e-3");
+        assert_eq!(short(0.016093), "1.6e-2");
+        assert_eq!(short(0.2218), "2.2e-1");
+        assert_eq!(short(0.0127), "1.27e-2");
     }
 }

@@ -92,10 +92,16 @@ fn the_force_rises_with_friction_and_hardly_depends_on_the_penalty() {
     let material = materials::load_elasto_plastic(&s.material_file).unwrap();
     let v = fitting::shpb_model::study::contact_sensitivity(&s, &material).unwrap();
     for x in &v {
-        println!("{}: mean {:+.3e}, RMS {:.3e}", x.label, x.mean_change, x.rms_change);
+        println!(
+            "{}: mean {:+.3e}, RMS {:.3e}",
+            x.label, x.mean_change, x.rms_change
+        );
     }
     let (kappa_half, kappa_double, mu_half, mu_double) = (&v[0], &v[1], &v[2], &v[3]);
     assert!(mu_half.mean_change < 0.0 && mu_double.mean_change > 0.0);
-    let kappa = kappa_half.mean_change.abs().max(kappa_double.mean_change.abs());
+    let kappa = kappa_half
+        .mean_change
+        .abs()
+        .max(kappa_double.mean_change.abs());
     assert!(kappa < mu_half.mean_change.abs().min(mu_double.mean_change.abs()));
 }
