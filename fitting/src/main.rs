@@ -52,7 +52,14 @@ fn main() {
         Command::BenchMpm(a) => fitting::cli::bench_mpm::run(a),
     };
     if let Err(e) = result {
-        eprintln!("error: {e:#}");
+        let message = format!("{e:#}");
+        eprintln!("error: {message}");
+        if message.contains("data/") && !std::path::Path::new("data").is_dir() {
+            eprintln!(
+                "hint: the default files (data/...) are found from the current folder, which has no data/ folder: \
+run mpw from the repository root, or name the files (mpw fit SET.toml, mpw verify --data DIR, mpw drive --material FILE)"
+            );
+        }
         std::process::exit(1);
     }
 }
