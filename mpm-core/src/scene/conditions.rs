@@ -118,6 +118,11 @@ pub(super) fn add_springs_and_tractions<const D: usize>(
         let force = check.vector(&format!("{field}.force"), &t.force)?;
         solver.add_traction(&particles, force);
     }
+    if let Some(h) = &spec.traction_history {
+        let signal = TimeSignal::from_samples(h.iter().map(|k| (k[0], k[1])))
+            .map_err(|e| check.err("traction_history", e.to_string()))?;
+        solver.traction_history = Some(signal);
+    }
     Ok(())
 }
 

@@ -6,6 +6,7 @@
 //!
 //! ```toml
 //! kinematics = "plane-strain"      # "plane-strain" | "axisymmetric" | "3d"
+//! traction_history = [[t, factor], ...]   # optional: every traction scaled over time
 //! [grid]                           # spacing [m], origin [m], shift amplitudes [m], seed
 //! [time]                           # end [s], dt [s] (optional), safety, scheme = "musl" (default)|"usl"|"usf"
 //! [solver]                         # damping [1/s], mass_cutoff, body_force [m/s²], domain, blowup_factor,

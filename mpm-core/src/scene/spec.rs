@@ -23,6 +23,8 @@ pub struct SceneFile {
     pub springs: Vec<SpringSpec>,
     #[serde(default)]
     pub tractions: Vec<TractionSpec>,
+    /// (t [s], factor [-]) samples scaling every traction over time.
+    pub traction_history: Option<Vec<[f64; 2]>>,
     #[serde(default)]
     pub control_points: Vec<ControlPointSpec>,
     #[serde(default)]

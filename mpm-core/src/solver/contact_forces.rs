@@ -1,4 +1,5 @@
-//! Forces on the points from outside the continuum: applied (traction) forces, boundary
+//! Forces on the points from outside the continuum: applied (traction) forces times the
+//! load factor of `traction_history` at t_n, boundary
 //! springs (eq. 12.1) and penalty contact with rigid bodies (eq. 9.2-9.7); a face on an
 //! elastic bar then moves with its contact force (module `bar`). Contact
 //! candidates are searched every `search_interval` steps within a margin that covers the
@@ -14,7 +15,13 @@ impl<const D: usize> Solver<D> {
     /// Applied, spring (eq. 12.1) and penalty contact (eq. 9.2-9.7) forces on particles.
     pub(super) fn external_forces(&mut self) {
         let p = &self.particles;
-        self.scratch.force.copy_from_slice(&p.applied_force);
+        let factor = self
+            .traction_history
+            .as_ref()
+            .map_or(1.0, |h| h.at(self.time));
+        for (f, applied) in self.scratch.force.iter_mut().zip(&p.applied_force) {
+            *f = applied * factor;
+        }
         for s in &self.springs {
             for &i in &s.particles {
                 self.scratch.force[i] += s.force(&p.position[i], &p.reference_position[i]);

@@ -36,6 +36,7 @@ use crate::shape::corners;
 use crate::shift::GridShift;
 use crate::watchdog::Watchdog;
 use crate::weights::WeightCache;
+use materials::signal::TimeSignal;
 use materials::Material;
 use nalgebra::SVector;
 use std::sync::Arc;
@@ -81,6 +82,8 @@ pub struct Solver<const D: usize> {
     pub rigid: Vec<RigidContact<D>>,
     /// Named particles whose positions are recorded.
     pub control_points: Vec<(String, usize)>,
+    /// Load factor of the applied forces (tractions) over time; `None`: constant.
+    pub traction_history: Option<TimeSignal<f64>>,
     pub time: f64,
     pub step: usize,
     pub dt: f64,
@@ -109,6 +112,7 @@ impl<const D: usize> Solver<D> {
             springs: Vec::new(),
             rigid: Vec::new(),
             control_points: Vec::new(),
+            traction_history: None,
             time: 0.0,
             step: 0,
             dt: 0.0,
@@ -345,6 +349,47 @@ mod tests {
         // exact value behind the front is 0)
         assert!(eq_7_28 > 0.5, "{eq_7_28}");
         assert!(one_sided < 0.1, "{one_sided}");
+    }
+
+    /// A free block pulled by a traction whose factor ramps from 0 to 1: its momentum
+    /// gains Σ F factor(t_n) Δt over the steps (momentum is conserved by the transfers).
+    #[test]
+    fn a_traction_follows_its_history() {
+        let h = 0.1;
+        let mut s = Solver::new(Settings::<2>::new(Kinematics::PlaneStrain, h));
+        let block = fill(
+            &Shape::Box {
+                min: nalgebra::Vector2::zeros(),
+                max: nalgebra::Vector2::repeat(0.4),
+            },
+            nalgebra::Vector2::repeat(h / 2.0),
+            Kinematics::PlaneStrain,
+        );
+        s.add_body(
+            "block",
+            Arc::new(NeoHooke::new(1e6, 0.3, 1000.0)),
+            &block,
+            nalgebra::Vector2::zeros(),
+        );
+        let edge: Vec<usize> = (0..s.particles.len())
+            .filter(|&i| s.particles.position[i][0] > 0.35)
+            .collect();
+        let force = nalgebra::Vector2::new(50.0, 0.0);
+        s.add_traction(&edge, force);
+        s.traction_history = Some(TimeSignal::new(vec![0.0, 0.01], vec![0.0, 1.0]).unwrap());
+        s.initialize();
+        let mut impulse = 0.0;
+        for _ in 0..100 {
+            impulse += force[0] * (s.time / 0.01).min(1.0) * s.dt;
+            s.step().unwrap();
+        }
+        let p = &s.particles;
+        let momentum: f64 = (0..p.len()).map(|i| p.mass[i] * p.velocity[i][0]).sum();
+        assert!(
+            (momentum / impulse - 1.0).abs() < 1e-12,
+            "{momentum} vs {impulse}"
+        );
+        assert!(s.time > 0.01, "the ramp ends inside the run ({} s)", s.time);
     }
 
     #[test]
