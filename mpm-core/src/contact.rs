@@ -116,11 +116,13 @@ pub fn candidate_force<const D: usize>(
     point: Candidate<'_, D>,
     attachment: &mut Option<SVector<f64, D>>,
 ) -> Option<SVector<f64, D>> {
-    let centre = pose.to_body(point.x);
-    let (_, plane) = body.nearest_plane(&centre);
+    let mut xb = pose.to_body(point.x);
+    let (mut d, mut plane) = body.nearest_plane(&xb);
     let reach = point.reach(&(pose.rotation * plane.normal));
-    let xb = centre - plane.normal * reach;
-    let (d, plane) = body.nearest_plane(&xb);
+    if reach > 0.0 {
+        xb -= plane.normal * reach;
+        (d, plane) = body.nearest_plane(&xb);
+    }
     if d >= 0.0 {
         *attachment = None;
         return None;

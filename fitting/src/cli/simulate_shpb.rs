@@ -8,7 +8,7 @@ use crate::chart::{LineChart, Series};
 use crate::fit::report::read_parameters;
 use crate::shpb::signal::interpolate;
 use crate::shpb_model::scene::ShpbScene;
-use crate::shpb_model::study::{contact_sensitivity, refinement, Level};
+use crate::shpb_model::study::{contact_sensitivity, refinement, relative_rms, Level};
 use crate::shpb_model::{Drive, ShpbRun};
 use anyhow::{Context, Result};
 use materials::plasticity::ElastoPlastic;
@@ -151,7 +151,11 @@ pub fn run(scene_file: &Path, params: Option<&Path>, out: &Path, sensitivity: bo
             &scene.analysis.force_back_n,
         ),
     ] {
-        let rms = plateau_rms(&scene, &run.history.time_s, model_force, measured);
+        let rms = relative_rms(
+            &scene.plateau_times(),
+            (&run.history.time_s, model_force),
+            (&scene.analysis.time_s, measured),
+        );
         println!(
             "{name}: model vs measured over the plateau, RMS {:.2} % of the mean measured force",
             100.0 * rms
@@ -173,19 +177,6 @@ pub fn run(scene_file: &Path, params: Option<&Path>, out: &Path, sensitivity: bo
         }
     }
     Ok(())
-}
-
-/// RMS of model − measured over the record's plateau window, relative to the mean
-/// measured value there.
-pub fn plateau_rms(scene: &ShpbScene, t: &[f64], model: &[f64], measured: &[f64]) -> f64 {
-    let a = &scene.analysis;
-    let range = a.plateau.range.clone();
-    let (sum2, sum) = range.clone().fold((0.0, 0.0), |(s2, s), k| {
-        let m = interpolate(t, model, a.time_s[k]);
-        (s2 + (m - measured[k]).powi(2), s + measured[k])
-    });
-    let n = range.len() as f64;
-    (sum2 / n).sqrt() / (sum / n)
 }
 
 fn write_history(path: &Path, scene: &ShpbScene, run: &ShpbRun) -> Result<()> {

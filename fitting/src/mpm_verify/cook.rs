@@ -261,7 +261,10 @@ mod tests {
         assert_eq!(scene.settings.safety, case.settings.safety);
         // the scene's 10-piece load ramp against the case's cosine, within the error of
         // linear interpolation, (t_r/10)²/8 · max|f''| = π²/1600
-        let ramp = scene.traction_history.as_ref().expect("the scene ramps its load");
+        let ramp = scene
+            .traction_history
+            .as_ref()
+            .expect("the scene ramps its load");
         let bound = std::f64::consts::PI.powi(2) / 1600.0;
         for k in 0..=100 {
             let t = 1.2e-4 * k as f64 / 100.0;

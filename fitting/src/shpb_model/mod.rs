@@ -69,6 +69,13 @@ pub struct Cylinder {
     pub length: f64,
 }
 
+impl Cylinder {
+    /// Cross-section π d²/4 [m²].
+    pub fn area(&self) -> f64 {
+        std::f64::consts::PI * 0.25 * self.diameter * self.diameter
+    }
+}
+
 /// The measured histories at the specimen faces on one time base [s] from t = 0:
 /// incident strain ε_i (compression positive) and relative face velocity v1 − v2 [m/s].
 #[derive(Debug, Clone, PartialEq)]
@@ -114,8 +121,6 @@ pub struct ShpbModel {
     settings: ModelSettings,
     signals: FaceSignals,
     bars: Bars,
-    /// Axial position of the incident face at t = 0 [m].
-    incident_face_z: f64,
 }
 
 /// Name of the specimen body, for `Template::instantiate`.
@@ -196,12 +201,7 @@ impl ShpbModel {
             settings,
             signals,
             bars,
-            incident_face_z: z_max,
         })
-    }
-
-    pub fn settings(&self) -> &ModelSettings {
-        &self.settings
     }
 
     /// Number of material points.

@@ -106,7 +106,11 @@ impl ShpbModel {
         let (f_i, v_i) = face_state(&s.rigid[INCIDENT], drive);
         let (f_t, v_t) = face_state(&s.rigid[TRANSMITTER], 0.0);
         let ea = self.bars.axial_stiffness;
-        let z = |k: usize| s.rigid[k].body.motion.pose(t).translation[1];
+        // axial position of face k: its plane in the body frame, moved by its motion
+        let z = |k: usize| {
+            let body = &s.rigid[k].body;
+            body.planes[0].point[1] + body.motion.pose(t).translation[1]
+        };
         h.time_s.push(t);
         h.force_incident_n.push(f_i);
         h.force_transmitted_n.push(f_t);
@@ -114,9 +118,6 @@ impl ShpbModel {
         h.velocity_transmitted_m_per_s.push(v_t);
         h.reflected.push(f_i / ea - at(&self.signals.incident));
         h.transmitted.push(f_t / ea);
-        h.length_m.push(
-            self.incident_face_z + z(INCIDENT)
-                - (s.rigid[TRANSMITTER].body.planes[0].point[1] + z(TRANSMITTER)),
-        );
+        h.length_m.push(z(INCIDENT) - z(TRANSMITTER));
     }
 }

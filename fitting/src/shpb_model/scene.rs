@@ -33,28 +33,11 @@ struct SceneFile {
     level: String,
     drive: String,
     layers: usize,
-    #[serde(default = "default_friction")]
-    friction: f64,
-    #[serde(default = "default_contact_factor")]
-    contact_factor: f64,
-    #[serde(default = "default_safety")]
-    safety: f64,
-    #[serde(default = "default_shape_function")]
-    shape_function: String,
-}
-
-fn default_shape_function() -> String {
-    "linear".into()
-}
-
-fn default_friction() -> f64 {
-    0.1
-}
-fn default_contact_factor() -> f64 {
-    1.0
-}
-fn default_safety() -> f64 {
-    0.3
+    /// Left out: the defaults of `ModelSettings::new`.
+    friction: Option<f64>,
+    contact_factor: Option<f64>,
+    safety: Option<f64>,
+    shape_function: Option<String>,
 }
 
 /// A loaded SHPB scene: the record, its processed face signals and the model settings.
@@ -101,40 +84,42 @@ impl ShpbScene {
                 format!("\"{other}\", expected \"incident-pulse\" or \"measured-velocity\"")
             )),
         };
+        let mut settings = ModelSettings::new(f.layers, drive);
+        settings.friction = f.friction.unwrap_or(settings.friction);
+        settings.contact_factor = f.contact_factor.unwrap_or(settings.contact_factor);
+        settings.safety = f.safety.unwrap_or(settings.safety);
         if !(2..=2000).contains(&f.layers) {
             bail!(field(
                 "layers",
                 format!("{} points along the specimen, expected 2 to 2000", f.layers)
             ));
         }
-        if !(0.0..=1.0).contains(&f.friction) {
+        if !(0.0..=1.0).contains(&settings.friction) {
             bail!(field(
                 "friction",
                 format!(
                     "{}, expected a Coulomb coefficient between 0 and 1",
-                    f.friction
+                    settings.friction
                 )
             ));
         }
-        if !(f.contact_factor > 0.1 && f.contact_factor <= 10.0) {
+        if !(settings.contact_factor > 0.1 && settings.contact_factor <= 10.0) {
             bail!(field(
                 "contact_factor",
-                format!(
-                    "{}, expected 0.1 < factor <= 10 (1 is the default)",
-                    f.contact_factor
-                )
+                format!("{}, expected 0.1 < factor <= 10", settings.contact_factor)
             ));
         }
-        if !(f.safety > 0.0 && f.safety <= 1.0) {
+        if !(settings.safety > 0.0 && settings.safety <= 1.0) {
             bail!(field(
                 "safety",
-                format!("{}, expected 0 < safety <= 1", f.safety)
+                format!("{}, expected 0 < safety <= 1", settings.safety)
             ));
         }
-        let shape_function = match f.shape_function.as_str() {
-            "linear" => ShapeFunction::Linear,
-            "ugimp" => ShapeFunction::UGimp,
-            other => bail!(field(
+        settings.shape_function = match f.shape_function.as_deref() {
+            None => settings.shape_function,
+            Some("linear") => ShapeFunction::Linear,
+            Some("ugimp") => ShapeFunction::UGimp,
+            Some(other) => bail!(field(
                 "shape_function",
                 format!("\"{other}\", expected \"linear\" or \"ugimp\"")
             )),
@@ -143,17 +128,18 @@ impl ShpbScene {
         let experiment = ShpbExperiment::load(&dir.join(&f.experiment))?;
         let analysis = analyze(&experiment)
             .with_context(|| format!("processing {}", experiment.data_file.display()))?;
-        let mut settings = ModelSettings::new(f.layers, drive);
-        settings.friction = f.friction;
-        settings.contact_factor = f.contact_factor;
-        settings.safety = f.safety;
-        settings.shape_function = shape_function;
         Ok(ShpbScene {
             experiment,
             analysis,
             material_file: dir.join(&f.material),
             settings,
         })
+    }
+
+    /// Sample times of the record's plateau window [s], where model and record are compared.
+    pub fn plateau_times(&self) -> Vec<f64> {
+        let a = &self.analysis;
+        a.plateau.range.clone().map(|k| a.time_s[k]).collect()
     }
 
     /// The measured histories at the faces, from the processed record.

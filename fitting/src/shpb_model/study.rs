@@ -22,8 +22,9 @@ pub struct Level {
     pub error_transmitted: f64,
 }
 
-/// RMS of `a − b` over `times` relative to the mean of `b` (both on time base `t_a`, `t_b`).
-fn relative_rms(times: &[f64], (t_a, a): (&[f64], &[f64]), (t_b, b): (&[f64], &[f64])) -> f64 {
+/// RMS of `a − b` over `times` relative to the mean of `b` (each on its own time base,
+/// `t_a` and `t_b`).
+pub fn relative_rms(times: &[f64], (t_a, a): (&[f64], &[f64]), (t_b, b): (&[f64], &[f64])) -> f64 {
     let (sum2, sum) = times.iter().fold((0.0, 0.0), |(s2, s), &t| {
         let (x, y) = (interpolate(t_a, a, t), interpolate(t_b, b, t));
         (s2 + (x - y).powi(2), s + y)
@@ -56,8 +57,7 @@ pub fn refinement(
         progress(n, &run);
         runs.push(run);
     }
-    let a = &scene.analysis;
-    let times: Vec<f64> = a.plateau.range.clone().map(|k| a.time_s[k]).collect();
+    let times = scene.plateau_times();
     let finest = &runs[runs.len() - 1].history;
     Ok(runs
         .iter()
@@ -101,8 +101,7 @@ pub fn contact_sensitivity(scene: &ShpbScene, material: &ElastoPlastic) -> Resul
     };
     let base = scene.settings;
     let reference = run(base)?;
-    let a = &scene.analysis;
-    let times: Vec<f64> = a.plateau.range.clone().map(|k| a.time_s[k]).collect();
+    let times = scene.plateau_times();
     let r = &reference.history;
     let mean = |h: &super::FaceHistory| {
         times

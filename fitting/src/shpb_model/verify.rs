@@ -63,8 +63,6 @@ pub struct Impedance {
     pub transmission_theory: f64,
     /// The 1D theory's own error for this pulse and rod (`lateral_inertia_error`).
     pub theory_error: f64,
-    pub particles: usize,
-    pub wall_s: f64,
 }
 
 fn step_pulse(end: f64) -> FaceSignals {
@@ -96,7 +94,7 @@ fn mean_over(t: &[f64], v: &[f64], (from, to): (f64, f64)) -> f64 {
 pub fn impedance_check(e: f64, nu: f64, rho: f64, layers: usize) -> anyhow::Result<Impedance> {
     let bars = bars();
     let z_b = bars.axial_stiffness / bars.wave_speed;
-    let area = std::f64::consts::PI * 0.25 * SPECIMEN.diameter * SPECIMEN.diameter;
+    let area = SPECIMEN.area();
     let c_rod = (e / rho).sqrt();
     let z_s = rho * c_rod * area;
     let material = NeoHooke::new(e, nu, rho);
@@ -131,8 +129,6 @@ pub fn impedance_check(e: f64, nu: f64, rho: f64, layers: usize) -> anyhow::Resu
             c_rod.min(bars.wave_speed),
             RISE,
         ),
-        particles: run.particles,
-        wall_s: run.wall_s,
     })
 }
 
@@ -165,7 +161,7 @@ pub fn elastic_compression(layers: usize) -> anyhow::Result<f64> {
     let h = model.run(Arc::new(material))?.history;
     let k = h.time_s.len() - 1;
     let strain = 1.0 - h.length_m[k] / cylinder.length;
-    let area = std::f64::consts::PI * 0.25 * cylinder.diameter * cylinder.diameter;
+    let area = cylinder.area();
     Ok(h.force_transmitted_n[k] / (e * area * strain))
 }
 

@@ -90,15 +90,19 @@ impl<const D: usize> Solver<D> {
                 .collect();
             c.force = SVector::zeros();
             c.active = 0;
+            // the springs a bar-driven face pushes on, along its axis
+            let bar_axis = body.motion.bar.as_ref().map(|b| b.axis);
             let mut springs = ContactSprings::default();
             for (&i, f) in c.candidates.iter().zip(&forces) {
                 if let Some(f) = f {
                     self.scratch.force[i] += f;
                     c.force -= f;
                     c.active += 1;
-                    let k = body.penalty_of(p.mass[i]);
-                    springs.stiffness += k;
-                    springs.velocity += k * p.velocity[i].dot(&body.planes[0].normal);
+                    if let Some(axis) = bar_axis {
+                        let k = body.penalty_of(p.mass[i]);
+                        springs.stiffness += k;
+                        springs.velocity += k * p.velocity[i].dot(&axis);
+                    }
                 }
             }
             if let Some(bar) = &mut rc.body.motion.bar {

@@ -14,6 +14,14 @@ impl<const D: usize> Solver<D> {
     /// unless that box would need more than `limits::GRID_NODES` nodes, and evaluate
     /// every point's shape functions for the step.
     pub(super) fn refit_grid(&mut self) -> Result<(), SimulationError> {
+        match self.settings.shape_function {
+            ShapeFunction::Linear => self.refit_grid_for::<Linear>(),
+            ShapeFunction::UGimp => self.refit_grid_for::<UGimp>(),
+        }
+    }
+
+    /// `refit_grid` for kernel `K`: the grid holds every stencil over every shift.
+    fn refit_grid_for<K: Kernel<D>>(&mut self) -> Result<(), SimulationError> {
         let shift = self.shift.as_mut().map_or(SVector::zeros(), |s| s.sample());
         self.grid.origin = self.settings.origin + shift;
         let x = &self.particles.position;
@@ -38,10 +46,7 @@ impl<const D: usize> Solver<D> {
                 |a, b| (a.0.inf(&b.0), a.1.sup(&b.1)),
             );
         let (cmin, cmax) = (self.grid.cell_of(&lo), self.grid.cell_of(&hi));
-        let (pad, support) = match self.settings.shape_function {
-            ShapeFunction::Linear => reach::<Linear, D>(),
-            ShapeFunction::UGimp => reach::<UGimp, D>(),
-        };
+        let (pad, support) = (K::PAD, K::SUPPORT + K::SHIFT);
         let nodes: f64 = (0..D)
             .map(|i| cmax[i] as f64 - cmin[i] as f64 + support as f64)
             .product();
@@ -55,22 +60,8 @@ impl<const D: usize> Solver<D> {
         }
         self.grid.fit(cmin, cmax, pad, support);
         let (s, p) = (&mut self.scratch, &self.particles);
-        match self.settings.shape_function {
-            ShapeFunction::Linear => {
-                s.weights
-                    .compute::<Linear>(&self.grid, &p.position, &p.half_size)
-            }
-            ShapeFunction::UGimp => {
-                s.weights
-                    .compute::<UGimp>(&self.grid, &p.position, &p.half_size)
-            }
-        }
+        s.weights
+            .compute::<K>(&self.grid, &p.position, &p.half_size);
         Ok(())
     }
-}
-
-/// Nodes below a cell's lower corner and nodes per axis that a kernel's stencils cover,
-/// over every shift: what the grid must hold around the points' cells.
-fn reach<K: Kernel<D>, const D: usize>() -> (usize, usize) {
-    (K::PAD, K::SUPPORT + K::SHIFT)
 }
