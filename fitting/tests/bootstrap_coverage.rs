@@ -116,6 +116,7 @@ fn population(seed: u64) -> FitSet {
         blocks,
         optimizer: "lm".into(),
         starts: 1,
+        ftol: fitting::fit::lm::LmOptions::default().ftol,
         seed,
         truth: BTreeMap::new(),
     }

@@ -106,16 +106,25 @@ impl<const D: usize> Candidate<'_, D> {
     }
 }
 
+/// A contact force on a point [N] and where it acts, the nearest point of the point's
+/// domain [m] (both world frame).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactForce<const D: usize> {
+    pub force: SVector<f64, D>,
+    pub at: SVector<f64, D>,
+}
+
 /// Exact check and penalty force for one candidate: returns the force on the particle
-/// (world frame), updating or clearing its attachment. The surface acts on the nearest
-/// point of the candidate's domain, x − reach(n) n (the centre when it has no domain).
+/// and where it acts (world frame), updating or clearing its attachment. The surface acts
+/// on the nearest point of the candidate's domain, x − reach(n) n (the centre when it has
+/// no domain).
 #[inline]
 pub fn candidate_force<const D: usize>(
     body: &RigidBody<D>,
     pose: &Pose<D>,
     point: Candidate<'_, D>,
     attachment: &mut Option<SVector<f64, D>>,
-) -> Option<SVector<f64, D>> {
+) -> Option<ContactForce<D>> {
     let mut xb = pose.to_body(point.x);
     let (mut d, mut plane) = body.nearest_plane(&xb);
     let reach = point.reach(&(pose.rotation * plane.normal));
@@ -130,7 +139,10 @@ pub fn candidate_force<const D: usize>(
     let xc = xb - plane.normal * d;
     let xa = attachment.get_or_insert(xc);
     let f = penalty_force(&xb, &xc, xa, body.penalty_of(point.mass), body.friction);
-    Some(pose.rotation * f)
+    Some(ContactForce {
+        force: pose.rotation * f,
+        at: pose.to_world(&xb),
+    })
 }
 
 #[cfg(test)]

@@ -9,7 +9,7 @@ use crate::fit::charts;
 use crate::fit::cross_validation::leave_one_group_out;
 use crate::fit::fit_set::FitSet;
 use crate::fit::objective::Block;
-use crate::fit::report::{table, write_files};
+use crate::fit::report::{read_parameters, table, write_files};
 use crate::fit::run::{run_fit, FitResult, Optimizer};
 use crate::fit::scatter::scatter;
 use crate::fit::study_report::{
@@ -17,6 +17,7 @@ use crate::fit::study_report::{
 };
 use crate::fit::trace::HistoryPoint;
 use anyhow::Result;
+use materials::material::Model;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
@@ -30,6 +31,10 @@ pub struct Args {
     /// Override the set's number of starts.
     #[arg(long)]
     pub starts: Option<usize>,
+    /// Start from the parameters of this fit report or material file (e.g. the
+    /// single-point fit before an MPM-level fit), clamped into the set's bounds.
+    #[arg(long, value_name = "REPORT")]
+    pub start: Option<PathBuf>,
     /// Output folder for report and charts.
     #[arg(long, default_value = "out/fit")]
     pub out: PathBuf,
@@ -141,6 +146,12 @@ pub fn run(args: Args) -> Result<()> {
     let mut set = FitSet::load(&args.set)?;
     if let Some(s) = args.starts {
         set.starts = s.max(1);
+    }
+    if let Some(file) = &args.start {
+        let start = read_parameters(&set.base, file)?;
+        for p in &mut set.params {
+            *p = p.starting_at(start.param(&p.name).expect("a free parameter of the base"));
+        }
     }
     let optimizer = Optimizer::parse(args.optimizer.as_deref().unwrap_or(&set.optimizer))?;
     eprintln!(

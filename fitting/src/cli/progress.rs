@@ -1,15 +1,22 @@
 //! Progress on standard error. On a terminal one line is rewritten in place (`\r`); off a
 //! terminal (a log file, CI) each group of updates (`key`: a fit stage and start, a tenth
 //! of the bootstrap samples) ends as one line with its last state, so that a log holds one
-//! line per group instead of thousands of carriage returns.
+//! line per group instead of thousands of carriage returns, plus a line at least every
+//! `HEARTBEAT` while a group runs (a fit with the MPM level in the loop takes minutes).
 
 use std::io::{IsTerminal, Write};
 use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+/// Off a terminal, the longest silence while a group runs.
+const HEARTBEAT: Duration = Duration::from_secs(30);
 
 pub struct ProgressLine {
     terminal: bool,
     /// (key, text) of the last update not yet printed as a line (off a terminal).
     pending: Mutex<Option<(String, String)>>,
+    /// When the last line was printed (off a terminal).
+    printed: Mutex<Instant>,
 }
 
 impl Default for ProgressLine {
@@ -17,6 +24,7 @@ impl Default for ProgressLine {
         ProgressLine {
             terminal: std::io::stderr().is_terminal(),
             pending: Mutex::new(None),
+            printed: Mutex::new(Instant::now()),
         }
     }
 }
@@ -30,10 +38,16 @@ impl ProgressLine {
             return;
         }
         let mut pending = self.pending.lock().unwrap();
+        let mut printed = self.printed.lock().unwrap();
         if let Some((last, line)) = pending.as_ref() {
             if last != key {
                 eprintln!("{line}");
+                *printed = Instant::now();
             }
+        }
+        if printed.elapsed() >= HEARTBEAT {
+            eprintln!("{text}");
+            *printed = Instant::now();
         }
         *pending = Some((key.to_string(), text.to_string()));
     }

@@ -1,7 +1,9 @@
 //! A loaded experiment set: the base material with its fixed overrides, the experiments
 //! as objective blocks at their model level, the free parameters and the stages.
 
-use super::model::{with_values, Material};
+use super::lm::LmOptions;
+use super::model::{with_values, ExperimentModel, Material};
+use super::mpm_shpb::{FaceForces, MpmShpb};
 use super::objective::Block;
 use super::params::FreeParam;
 use super::set_file::{resolve, ExperimentEntry, SetFile, Window};
@@ -10,6 +12,8 @@ use super::shpb_specimen::ShpbSpecimen;
 use super::single_point::SinglePoint;
 use super::tensile::{Tensile, Thermal};
 use crate::experiment::{load_experiments, Experiment, ShpbExperiment, TensileExperiment};
+use crate::shpb::analyze;
+use crate::shpb_model::{record, Drive, ModelSettings};
 use anyhow::{bail, Context, Result};
 use materials::material::Model;
 use materials::AnyModel;
@@ -36,6 +40,8 @@ pub struct FitSet {
     pub stages: Vec<Stage>,
     pub optimizer: String,
     pub starts: usize,
+    /// Relative decrease of S below which LM stops.
+    pub ftol: f64,
     pub seed: u64,
     pub truth: BTreeMap<String, f64>,
 }
@@ -137,6 +143,13 @@ impl FitSet {
             stages,
             optimizer: set.optimizer,
             starts: set.starts,
+            ftol: match set.ftol {
+                Some(f) if !(f > 0.0 && f < 0.1) => bail!(
+                    "{}: {f}, expected a fraction between 0 and 0.1",
+                    here("ftol")
+                ),
+                f => f.unwrap_or(LmOptions::default().ftol),
+            },
             seed: set.seed,
             truth: set.truth,
         })
@@ -156,17 +169,31 @@ fn thin(range: std::ops::Range<usize>, max: usize) -> Vec<usize> {
     idx
 }
 
+/// The model levels of a set file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Level {
+    SinglePoint,
+    MpmAxisymmetric,
+}
+
 fn build_block(base: &Material, exp: &Experiment, entry: &ExperimentEntry) -> Result<Block> {
-    if entry.level != "single-point" {
-        bail!(
-            "field `level`: \"{}\", only \"single-point\" is available",
-            entry.level
-        );
+    let level = match entry.level.as_str() {
+        "single-point" => Level::SinglePoint,
+        "mpm-axisymmetric" => Level::MpmAxisymmetric,
+        other => bail!(
+            "field `level`: \"{other}\", expected \"single-point\" or \"mpm-axisymmetric\" (3D levels are not built yet)"
+        ),
+    };
+    if level == Level::SinglePoint && (entry.layers.is_some() || entry.friction.is_some()) {
+        bail!("fields `layers` and `friction` belong to level = \"mpm-axisymmetric\"");
     }
     let max = entry.max_samples.unwrap_or(DEFAULT_MAX_SAMPLES);
-    match exp {
-        Experiment::Tensile(e) => tensile_block(base, e, entry, max),
-        Experiment::Shpb(e) => shpb_block(base, e, entry, max),
+    match (exp, level) {
+        (Experiment::Tensile(e), Level::SinglePoint) => tensile_block(base, e, entry, max),
+        (Experiment::Tensile(_), Level::MpmAxisymmetric) => {
+            bail!("field `level`: the MPM level models the SHPB test only; a tensile test is \"single-point\"")
+        }
+        (Experiment::Shpb(e), level) => shpb_block(base, e, entry, max, level),
     }
 }
 
@@ -232,12 +259,33 @@ fn tensile_block(
     Ok(block)
 }
 
-/// Which bar forces an SHPB experiment is compared with.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Channel {
-    Both,
-    F1,
-    F2,
+/// The MPM model of record `e` at its `samples` (indices of the analysis), with the
+/// entry's layers and friction.
+fn mpm_block_model(
+    base: &Material,
+    e: &ShpbExperiment,
+    entry: &ExperimentEntry,
+    samples: &[usize],
+    forces: FaceForces,
+) -> Result<MpmShpb> {
+    let mut settings = ModelSettings::new(entry.layers.unwrap_or(20), Drive::MeasuredVelocity);
+    settings.friction = entry.friction.unwrap_or(settings.friction);
+    if !(2..=400).contains(&settings.layers) {
+        bail!(
+            "field `layers`: {}, expected 2 to 400 points along the specimen",
+            settings.layers
+        );
+    }
+    if !(0.0..=1.0).contains(&settings.friction) {
+        bail!(
+            "field `friction`: {}, expected a Coulomb coefficient between 0 and 1",
+            settings.friction
+        );
+    }
+    let analysis = analyze(e)?;
+    let times = samples.iter().map(|&k| analysis.time_s[k]).collect();
+    let model = record::model(e, &analysis, settings, base)?;
+    Ok(MpmShpb::new(model, times, forces, e.temperature_k))
 }
 
 /// Mean of R = 2 |F1 − F2| / |F1 + F2| over `range` [-].
@@ -254,14 +302,15 @@ fn shpb_block(
     e: &ShpbExperiment,
     entry: &ExperimentEntry,
     max: usize,
+    level: Level,
 ) -> Result<Block> {
     if entry.thermal.is_some() {
         bail!("field `thermal`: an SHPB specimen is always adiabatic");
     }
-    let (channels, channel) = match entry.forces.as_deref() {
-        None | Some("both") => (2, Channel::Both),
-        Some("f1") => (1, Channel::F1),
-        Some("f2") => (1, Channel::F2),
+    let channel = match entry.forces.as_deref() {
+        None | Some("both") => FaceForces::Both,
+        Some("f1") => FaceForces::F1,
+        Some("f2") => FaceForces::F2,
         Some(other) => {
             bail!("field `forces`: \"{other}\", expected \"both\", \"f1\" or \"f2\"")
         }
@@ -305,17 +354,20 @@ fn shpb_block(
         }
     }
     let samples: Vec<usize> = thin(range, max);
-    let model = ShpbSpecimen::new(
-        base,
-        &face.time_s,
-        &face.velocity_m_per_s,
-        &samples,
-        e.specimen.length_m,
-        e.specimen.area_m2(),
-        e.temperature_k,
-        channels,
-    )?;
-    let first = if channel == Channel::F2 {
+    let model: Box<dyn ExperimentModel> = match level {
+        Level::SinglePoint => Box::new(SinglePoint::new(ShpbSpecimen::new(
+            base,
+            &face.time_s,
+            &face.velocity_m_per_s,
+            &samples,
+            e.specimen.length_m,
+            e.specimen.area_m2(),
+            e.temperature_k,
+            channel.count(),
+        )?)),
+        Level::MpmAxisymmetric => Box::new(mpm_block_model(base, e, entry, &samples, channel)?),
+    };
+    let first = if channel == FaceForces::F2 {
         &face.f2_n
     } else {
         &face.f1_n
@@ -323,13 +375,13 @@ fn shpb_block(
     let mut measured: Vec<f64> = samples.iter().map(|&k| first[k]).collect();
     let times: Vec<f64> = samples.iter().map(|&k| face.time_s[k]).collect();
     let mut x: Vec<f64> = times.iter().map(|t| t * 1e6).collect();
-    if channels == 2 {
+    if channel == FaceForces::Both {
         measured.extend(samples.iter().map(|&k| face.f2_n[k]));
         x.extend(times.iter().map(|t| t * 1e6));
     }
     let mut block = Block::new(
         &e.name,
-        Box::new(SinglePoint::new(model)),
+        model,
         measured,
         times,
         x,
@@ -339,9 +391,9 @@ fn shpb_block(
         entry.weight,
     )?;
     block.channels = match channel {
-        Channel::Both => vec!["F1".into(), "F2".into()],
-        Channel::F1 => vec!["F1".into()],
-        Channel::F2 => vec!["F2".into()],
+        FaceForces::Both => vec!["F1".into(), "F2".into()],
+        FaceForces::F1 => vec!["F1".into()],
+        FaceForces::F2 => vec!["F2".into()],
     };
     block.equilibrium_ratio = ratio;
     block.temperature_k = e.temperature_k;

@@ -13,6 +13,8 @@ pub mod fit_set;
 pub mod identifiability;
 pub mod lm;
 pub mod model;
+pub mod mpm_shpb;
+pub mod mpm_synthetic;
 pub mod nelder_mead;
 pub mod objective;
 pub mod params;

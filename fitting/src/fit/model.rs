@@ -3,8 +3,8 @@
 //! prediction with respect to named material parameters.
 //!
 //! Single-point models (`single_point`) give the exact derivative by AD through the
-//! driver; a model without AD (the MPM SHPB model, later) keeps the default, a forward
-//! finite difference with columns evaluated in parallel. The optimizers see only this
+//! driver; a model without AD (the MPM SHPB model, `mpm_shpb`) keeps the default, a
+//! forward finite difference with columns evaluated in parallel, at its own step. The optimizers see only this
 //! trait, so a new model level plugs in without touching them.
 
 use anyhow::Result;
@@ -30,6 +30,12 @@ pub trait ExperimentModel: Send + Sync {
     /// Predicted values at the experiment's samples, in the units of its measurement.
     fn predict(&self, material: &Material) -> Result<Vec<f64>>;
 
+    /// Relative step of the forward differences (`finite_difference`): the driver's
+    /// `FD_STEP` unless the model's own noise asks for a larger one.
+    fn fd_step(&self) -> f64 {
+        FD_STEP
+    }
+
     /// Prediction and its Jacobian d(prediction)/d(parameter) (rows: samples, columns:
     /// `free` in order). Default: forward finite differences (`finite_difference`).
     fn predict_with_jacobian(
@@ -53,7 +59,7 @@ pub fn with_values(material: &Material, names: &[&str], values: &[f64]) -> Mater
 }
 
 /// Forward finite-difference Jacobian, one column per free parameter, columns in parallel;
-/// step h_k = FD_STEP · max(|p_k|, 1e-3).
+/// step h_k = `model.fd_step()` · max(|p_k|, 1e-3).
 pub fn finite_difference<M: ExperimentModel + ?Sized>(
     model: &M,
     material: &Material,
@@ -71,7 +77,7 @@ pub fn finite_difference<M: ExperimentModel + ?Sized>(
     let columns: Vec<Vec<f64>> = (0..free.len())
         .into_par_iter()
         .map(|k| {
-            let h = FD_STEP * base[k].abs().max(1e-3);
+            let h = model.fd_step() * base[k].abs().max(1e-3);
             let mut p = base.clone();
             p[k] += h;
             let y = model.predict(&with_values(material, free, &p))?;

@@ -116,6 +116,10 @@ pub fn run_fit(
         let blocks = stage.experiments.iter().map(|&e| &set.blocks[e]).collect();
         let objective = Objective::new(material, blocks, space.clone())?;
         let mut runs = Vec::new();
+        let options = LmOptions {
+            ftol: set.ftol,
+            ..LmOptions::default()
+        };
         for start in 0..set.starts {
             let u0 = if start == 0 {
                 space.to_unbounded(&space.starts())
@@ -124,18 +128,14 @@ pub fn run_fit(
             };
             let report = |p: &HistoryPoint| progress(si, start, p);
             let run = match optimizer {
-                Optimizer::LmExact => levenberg_marquardt(
-                    &objective,
-                    &u0,
-                    JacobianKind::Exact,
-                    &LmOptions::default(),
-                    &report,
-                ),
+                Optimizer::LmExact => {
+                    levenberg_marquardt(&objective, &u0, JacobianKind::Exact, &options, &report)
+                }
                 Optimizer::LmFiniteDifference => levenberg_marquardt(
                     &objective,
                     &u0,
                     JacobianKind::FiniteDifference,
-                    &LmOptions::default(),
+                    &options,
                     &report,
                 ),
                 Optimizer::NelderMead => {

@@ -8,6 +8,8 @@
 //! optimizer = "lm"            # "lm" (exact AD Jacobian) | "lm-fd" | "nelder-mead"
 //! starts = 3                  # multi-start: the given start plus random starts
 //! seed = 1                    # of the random starts
+//! ftol = 1e-9                 # optional: LM stops when S falls by less than this fraction
+//!                             #   (an MPM level's noise asks for ≈ 1e-5)
 //! [fixed]                     # optional overrides of the base set (SI)
 //! gamma_tq = 0.9
 //! [truth]                     # optional: known parameters (synthetic data), reported
@@ -20,7 +22,10 @@
 //! [[experiment]]
 //! file = "qs_tension.toml"    # an experiment TOML (fitting::experiment), relative to this file
 //! weight = 1.0                # optional, default 1
-//! level = "single-point"      # model level (only "single-point" so far)
+//! level = "single-point"      # model level: "single-point" | "mpm-axisymmetric" (SHPB only:
+//!                             #   the MPM model with friction and inertia, `fit::mpm_shpb`)
+//! layers = 20                 # mpm-axisymmetric: points along the specimen (default 20)
+//! friction = 0.1              # mpm-axisymmetric: Coulomb μ at the faces (default 0.1)
 //! thermal = "isothermal"      # tensile: "isothermal" | "adiabatic" (default: adiabatic above 1 1/s)
 //! window = [15e-6, 115e-6]    # shpb (required): window [s] after the incident pulse start at the
 //!                             #   faces, or "plateau": the strain-rate plateau of `shpb::analyze`
@@ -50,6 +55,8 @@ pub struct SetFile {
     pub starts: usize,
     #[serde(default)]
     pub seed: u64,
+    /// Levenberg-Marquardt stops when S falls by less than this fraction in a step.
+    pub ftol: Option<f64>,
     #[serde(default)]
     pub fixed: BTreeMap<String, f64>,
     #[serde(default)]
@@ -93,6 +100,8 @@ pub struct ExperimentEntry {
     pub forces: Option<String>,
     pub max_equilibrium_ratio: Option<f64>,
     pub max_samples: Option<usize>,
+    pub layers: Option<usize>,
+    pub friction: Option<f64>,
 }
 
 /// An SHPB fit window: explicit times [s] or the strain-rate plateau (`"plateau"`).

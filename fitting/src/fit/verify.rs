@@ -9,6 +9,8 @@
 
 use super::cross_validation::{leave_one_group_out, Fold};
 use super::fit_set::FitSet;
+use super::model::with_values;
+use super::mpm_synthetic;
 use super::objective::{JacobianKind, Objective};
 use super::params::ParamSpace;
 use super::run::{run_fit, Optimizer};
@@ -91,6 +93,46 @@ pub fn leave_one_rate_out_cases(set_file: &Path) -> Result<Vec<CaseResult>> {
         .collect())
 }
 
+/// Truth of the MPM-level synthetic (`mpm_synthetic`): the 945 material file with A, B,
+/// N, C of the single-point fit of its six records (README, "Fitting with the MPM level").
+pub const SYNTHETIC_945: [(&str, f64); 4] = [("A", 362e6), ("B", 329e6), ("N", 0.476), ("C", 0.12)];
+
+/// The MPM-level synthetic: the MPM level recovers A and B within `RECOVERY_TOLERANCE`,
+/// the single-point level is biased beyond it.
+pub fn mpm_synthetic_cases(data: &VerifyData) -> Result<Vec<CaseResult>> {
+    let base = materials::load_elasto_plastic(data.materials().join("steel_945.toml"))?;
+    let (names, values): (Vec<&str>, Vec<f64>) = SYNTHETIC_945.iter().cloned().unzip();
+    let truth = with_values(&base, &names, &values);
+    let r = mpm_synthetic::recovery(&truth)?;
+    let mut rows = Vec::new();
+    for (k, name) in mpm_synthetic::FREE.iter().enumerate() {
+        let tol = RECOVERY_TOLERANCE
+            .iter()
+            .find(|(n, _)| n == name)
+            .unwrap()
+            .1;
+        let level = mpm_synthetic::FIT_LAYERS;
+        rows.push(CaseResult::relative(
+            format!(
+                "fit/mpm-synthetic {name}: MPM level ({level} points along) recovers the truth"
+            ),
+            r.mpm[k],
+            r.truth[k],
+            tol,
+        ));
+        let bias = r.single_point[k] / r.truth[k] - 1.0;
+        rows.push(CaseResult::holds(
+            format!(
+                "fit/mpm-synthetic {name}: single-point level biased by {:+.1} % (beyond {:.0} %)",
+                100.0 * bias,
+                100.0 * tol
+            ),
+            bias.abs() > tol,
+        ));
+    }
+    Ok(rows)
+}
+
 /// All fitting rows for `mpw verify`.
 pub fn verify_cases(data: &VerifyData) -> Vec<CaseResult> {
     let mut rows = match recovery_cases(&data.default_set()) {
@@ -107,6 +149,13 @@ pub fn verify_cases(data: &VerifyData) -> Vec<CaseResult> {
             CaseResult::holds("fit/jacobian-ad-vs-central-fd", false)
         }
     });
+    match mpm_synthetic_cases(data) {
+        Ok(r) => rows.extend(r),
+        Err(e) => {
+            eprintln!("fit/mpm-synthetic: {e:#}");
+            rows.push(CaseResult::holds("fit/mpm-synthetic runs", false));
+        }
+    }
     let Some(file) = data.ss304l_set() else {
         eprintln!(
             "note: {} not found; 304L leave-one-rate-out skipped",

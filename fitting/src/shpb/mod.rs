@@ -10,7 +10,7 @@
 mod analysis;
 mod error;
 mod plateau;
-mod pulses;
+pub(crate) mod pulses;
 pub(crate) mod signal;
 pub mod synthetic;
 mod verify;

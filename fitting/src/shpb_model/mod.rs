@@ -16,7 +16,10 @@
 //!
 //! Contact: the faces sit at the specimen's ends and act on the points' domains (half a
 //! spacing, stretched with F, `mpm_core::contact::Candidate::reach`), so they touch the
-//! end layers at t = 0 and the specimen between them has its true length L(t). Contact at
+//! end layers at t = 0 and the specimen between them has its true length L(t). The
+//! contact forces act on the grid at those surface points (mpm-core's surface loads),
+//! so a face on a node plane loads only that plane and the end cells carry the same
+//! stress as the interior. Contact at
 //! the point centres would leave a gap of half a spacing (why the thesis's coarse B1 run
 //! starts late), and faces placed at the centres shorten the specimen to L − s: the strain
 //! for a face displacement then comes out L/(L − s) too large, an error of first order in
@@ -33,6 +36,7 @@
 //! and the face force dips for ≈ 0.5 µs (the cell-crossing error; GIMP/CPDI, issue 10).
 //! Units: SI.
 
+pub mod record;
 mod run;
 pub mod scene;
 pub mod study;

@@ -14,9 +14,8 @@
 //! shape_function = "linear"       # or "ugimp" (uniform GIMP on the points' lattice domains)
 //! ```
 
-use super::{Bars, Cylinder, Drive, FaceSignals, ModelSettings, ShpbModel};
+use super::{record, Drive, ModelSettings, ShpbModel};
 use crate::experiment::ShpbExperiment;
-use crate::fit::preheated::Preheated;
 use crate::shpb::{analyze, ShpbAnalysis};
 use anyhow::{bail, Context, Result};
 use materials::plasticity::ElastoPlastic;
@@ -142,41 +141,13 @@ impl ShpbScene {
         a.plateau.range.clone().map(|k| a.time_s[k]).collect()
     }
 
-    /// The measured histories at the faces, from the processed record.
-    pub fn signals(&self) -> FaceSignals {
-        FaceSignals {
-            time_s: self.analysis.time_s.clone(),
-            incident: self.analysis.incident.clone(),
-            relative_velocity_m_per_s: self.analysis.relative_velocity_m_per_s.clone(),
-        }
-    }
-
     /// The model of this record with `material`, which starts at the test temperature.
     pub fn model(&self, material: &ElastoPlastic) -> Result<ShpbModel> {
-        let bar = &self.experiment.bar;
-        let bars = Bars {
-            axial_stiffness: bar.elastic_modulus_pa * bar.area_m2(),
-            wave_speed: bar.wave_speed_m_per_s(),
-        };
-        let specimen = &self.experiment.specimen;
-        let cylinder = Cylinder {
-            diameter: specimen.diameter_m,
-            length: specimen.length_m,
-        };
-        ShpbModel::new(
-            cylinder,
-            bars,
-            self.signals(),
-            self.settings,
-            self.material(material),
-        )
+        record::model(&self.experiment, &self.analysis, self.settings, material)
     }
 
     /// `material` starting at the test temperature.
     pub fn material(&self, material: &ElastoPlastic) -> std::sync::Arc<dyn materials::Material> {
-        std::sync::Arc::new(Preheated {
-            inner: *material,
-            theta_start: self.experiment.temperature_k,
-        })
+        record::preheated(material, self.experiment.temperature_k)
     }
 }

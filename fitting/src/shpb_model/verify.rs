@@ -9,6 +9,9 @@
 //! The ratios are measured as window means: ε_r after the pulse has risen and before the
 //! far end's echo (the specimen's P-wave front, the fastest) returns; ε_t after the
 //! transmitted front has risen and before the first internal echo arrives.
+//!
+//! And quasi-static elastic compression between the faces, against the specimen in
+//! series with the contact springs (`elastic_compression`).
 
 use super::{Bars, Cylinder, Drive, FaceSignals, ModelSettings, ShpbModel};
 use crate::case_result::CaseResult;
@@ -133,13 +136,17 @@ pub fn impedance_check(e: f64, nu: f64, rho: f64, layers: usize) -> anyhow::Resu
 }
 
 /// Quasi-static elastic compression between frictionless faces (measured drive, the
-/// face speed ramped to 0.4 m/s over 10 µs, 60 µs, ε ≈ 0.5 %): the face force F2 over
-/// E A ε, 1 in the limit. Known gap: it converges at first order in the point spacing
-/// (0.957, 0.980, 0.991 at 10, 20, 40 points along). Two first-order effects compete:
-/// the contact springs' compliance (s/E_p per face, softer) and, most likely, the end
-/// layers, whose boundary cells under-deform (stiffer; with 16× stiffer contact the
-/// ratio is 1.104, 1.052, 1.027, as if the specimen were L − s long).
-pub fn elastic_compression(layers: usize) -> anyhow::Result<f64> {
+/// face speed ramped to 0.04 m/s over 10 µs, 60 µs, ε ≈ 5e-4, where the Neo-Hooke law is
+/// linear to 4e-4): the face force F2 over E A ε with ε from the faces' travel, and the
+/// same ratio for the specimen in series with the two contact layers.
+///
+/// Each face's springs sum to κ_layer = ω_c² m_layer = f² E_p A / s (ω_c = f c / s,
+/// c² = E_p/ρ with the P-wave modulus E_p), so F2 / (E A ε) = 1 / (1 + 2 E / (f² E_p n))
+/// for n points along: the contact compliance is the model's only first-order error in
+/// quasi-static compression (before the contact forces acted at the domain surfaces, the
+/// end cells carried ≈ 3/4 of the interior stress and the ratio came out 0.957, 0.980,
+/// 0.991 at n = 10, 20, 40 from errors that partly cancelled).
+pub fn elastic_compression(layers: usize) -> anyhow::Result<(f64, f64)> {
     let cylinder = Cylinder {
         diameter: 8e-3,
         length: 4e-3,
@@ -147,7 +154,7 @@ pub fn elastic_compression(layers: usize) -> anyhow::Result<f64> {
     let n = 2001;
     let end = 60e-6;
     let time_s: Vec<f64> = (0..n).map(|k| end * k as f64 / (n - 1) as f64).collect();
-    let relative_velocity_m_per_s = time_s.iter().map(|t| 0.4 * (t / 10e-6).min(1.0)).collect();
+    let relative_velocity_m_per_s = time_s.iter().map(|t| 0.04 * (t / 10e-6).min(1.0)).collect();
     let signals = FaceSignals {
         time_s,
         incident: vec![0.0; n],
@@ -155,25 +162,31 @@ pub fn elastic_compression(layers: usize) -> anyhow::Result<f64> {
     };
     let mut settings = ModelSettings::new(layers, Drive::MeasuredVelocity);
     settings.friction = 0.0;
-    let e = 200e9;
-    let material = NeoHooke::new(e, 0.3, 7850.0);
+    let (e, nu) = (200e9, 0.3);
+    let material = NeoHooke::new(e, nu, 7850.0);
     let model = ShpbModel::new(cylinder, bars(), signals, settings, Arc::new(material))?;
     let h = model.run(Arc::new(material))?.history;
     let k = h.time_s.len() - 1;
     let strain = 1.0 - h.length_m[k] / cylinder.length;
-    let area = cylinder.area();
-    Ok(h.force_transmitted_n[k] / (e * area * strain))
+    let ratio = h.force_transmitted_n[k] / (e * cylinder.area() * strain);
+    let p_wave = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    let f = settings.contact_factor;
+    let series = 1.0 / (1.0 + 2.0 * e / (f * f * p_wave * layers as f64));
+    Ok((ratio, series))
 }
 
 /// Rows of `mpw verify`: the matched and the aluminium specimen at `LAYERS`; the elastic
-/// compression's gap as info rows.
+/// compression against the series springs.
 pub fn verify_cases() -> Vec<CaseResult> {
     let mut out = Vec::new();
     for layers in [10, 20, 40] {
-        let name =
-            format!("shpb-model/elastic compression n{layers}: F2 / (E A eps) (gap: first order)");
+        let name = format!(
+            "shpb-model/elastic compression n{layers}: F2 / (E A eps) vs specimen and contact springs in series"
+        );
         out.push(match elastic_compression(layers) {
-            Ok(ratio) => CaseResult::info(name, ratio, 1.0),
+            // tolerance: a fifth of the end-cell error this row guards against (2.7 % at
+            // n = 40 with stiff contact), well above the Neo-Hooke nonlinearity (4e-4)
+            Ok((ratio, series)) => CaseResult::relative(name, ratio, series, 5e-3),
             Err(e) => CaseResult::holds(format!("{name}: {e:#}"), false),
         });
     }

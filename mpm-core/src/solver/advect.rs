@@ -50,8 +50,9 @@ impl<const D: usize> Solver<D> {
         let power = |i: usize| (s.force[i] + b * p.mass[i]).dot(&s.grid_velocity[i]) * dt;
         let ext = fixed_sum(p.len(), 0.0, power);
         let abs = fixed_sum(p.len(), 0.0, |i| power(i).abs());
-        self.energies.external += ext;
-        self.energies.supplied += abs;
+        let (contact, contact_abs) = self.surface_load_work();
+        self.energies.external += ext + contact;
+        self.energies.supplied += abs + contact_abs;
         Ok(())
     }
 }

@@ -1,13 +1,15 @@
-//! Forces on the points from outside the continuum: applied (traction) forces times the
+//! Forces on the points from outside the continuum (contact forces as surface loads,
+//! module `surface_loads`): applied (traction) forces times the
 //! load factor of `traction_history` at t_n, boundary
 //! springs (eq. 12.1) and penalty contact with rigid bodies (eq. 9.2-9.7); a face on an
 //! elastic bar then moves with its contact force (module `bar`). Contact
 //! candidates are searched every `search_interval` steps within a margin that covers the
 //! travel of points and body until the next search.
 
+use super::surface_loads::SurfaceLoad;
 use super::Solver;
 use crate::bar::ContactSprings;
-use crate::contact::{candidate_force, Candidate};
+use crate::contact::{candidate_force, Candidate, ContactForce};
 use nalgebra::SVector;
 use rayon::prelude::*;
 
@@ -19,6 +21,7 @@ impl<const D: usize> Solver<D> {
             .traction_history
             .as_ref()
             .map_or(1.0, |h| h.at(self.time));
+        self.scratch.loads.clear();
         for (f, applied) in self.scratch.force.iter_mut().zip(&p.applied_force) {
             *f = applied * factor;
         }
@@ -74,7 +77,7 @@ impl<const D: usize> Solver<D> {
                 rc.contact.set_candidates(candidates);
             }
             let c = &mut rc.contact;
-            let forces: Vec<Option<SVector<f64, D>>> = c
+            let forces: Vec<Option<ContactForce<D>>> = c
                 .candidates
                 .par_iter()
                 .zip(c.attachment.par_iter_mut())
@@ -94,8 +97,13 @@ impl<const D: usize> Solver<D> {
             let bar_axis = body.motion.bar.as_ref().map(|b| b.axis);
             let mut springs = ContactSprings::default();
             for (&i, f) in c.candidates.iter().zip(&forces) {
-                if let Some(f) = f {
-                    self.scratch.force[i] += f;
+                if let Some(ContactForce { force: f, at }) = *f {
+                    self.scratch.loads.push(SurfaceLoad {
+                        particle: i,
+                        at,
+                        force: f,
+                        weights: 0..0,
+                    });
                     c.force -= f;
                     c.active += 1;
                     if let Some(axis) = bar_axis {

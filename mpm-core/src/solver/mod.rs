@@ -1,7 +1,8 @@
 //! Explicit MPM time stepping with the leapfrog on the grid (section 7.5, algorithms 6-12).
 //! A step is the list of named stages of its `Scheme` (module `scheme`), each stage one
 //! file: `grid_fit` (grid and shape-function weights), `contact_forces`, `scatter`
-//! (particle to grid), `grid_solve`, `gather` (grid to particle), `advect`, and the checks
+//! (particle to grid, with the contact forces at the surface points of
+//! `surface_loads`), `grid_solve`, `gather` (grid to particle), `advect`, and the checks
 //! of `energies`.
 //!
 //! Nodes lighter than the cutoff fraction of the heaviest point that reaches them are not
@@ -17,6 +18,7 @@ mod initialize;
 mod scatter;
 mod scheme;
 mod settings;
+mod surface_loads;
 mod time_step;
 
 pub use energies::Energies;
@@ -56,8 +58,12 @@ pub const SCRATCH_BYTES_PER_PARTICLE: usize =
 /// Per-particle work arrays of one step.
 #[derive(Clone, Default)]
 struct Scratch<const D: usize> {
-    /// Applied, spring and contact force on each particle [N].
+    /// Applied and spring force on each particle [N].
     force: Vec<SVector<f64, D>>,
+    /// Contact forces, applied at the surface points (module `surface_loads`).
+    loads: Vec<surface_loads::SurfaceLoad<D>>,
+    /// (node, weight) shares of the loads this step.
+    load_weights: Vec<(usize, f64)>,
     /// Grid velocity interpolated to the particle, ṽ [m/s].
     grid_velocity: Vec<SVector<f64, D>>,
     /// Stress work increment of each particle [J].

@@ -87,6 +87,9 @@ impl<const D: usize> Solver<D> {
                 }
             });
         }
+        if t.force {
+            self.add_surface_loads();
+        }
     }
 
     fn clear_nodes(&mut self, t: Transfer) {

@@ -1,0 +1,138 @@
+//! No inverse crime (issue 11): synthetic SHPB data from a finer model than the ones
+//! fitted. The data are the transmitter-face force F2 of the axisymmetric MPM model at
+//! `DATA_LAYERS` points along the specimen, with Coulomb friction μ = 0.1 at the faces,
+//! radial inertia and barrelling, under a measured-style drive (the relative face
+//! velocity ramped to 12 m/s over 10 µs, ε̇ ≈ 3000 1/s, 80 µs, ε ≈ 0.23). Two levels fit
+//! A and B (N and C at the truth) from 0.8 × the truth:
+//!
+//! - the single-point level (uniform, frictionless, inertia-free specimen), which must
+//!   show its bias: the friction's share of the force lands in A and B;
+//! - the MPM level at `FIT_LAYERS` points along, which must recover the truth within the
+//!   default fit's tolerances (A, B within 2 %, `verify::RECOVERY_TOLERANCE`).
+//!
+//! Gap: the issue asks for data from the 3D level, which is not built; the data here come
+//! from the same axisymmetric model at twice the resolution.
+
+use super::lm::{levenberg_marquardt, LmOptions};
+use super::model::{ExperimentModel, Material};
+use super::mpm_shpb::{FaceForces, MpmShpb};
+use super::objective::{Block, JacobianKind, Objective};
+use super::params::{FreeParam, ParamSpace};
+use super::shpb_specimen::ShpbSpecimen;
+use super::single_point::SinglePoint;
+use crate::shpb_model::record::preheated;
+use crate::shpb_model::{verify::bars, Cylinder, Drive, FaceSignals, ModelSettings, ShpbModel};
+use anyhow::Result;
+use materials::material::Model;
+
+/// Points along the specimen of the data and of the fitted MPM level.
+pub const DATA_LAYERS: usize = 40;
+pub const FIT_LAYERS: usize = 20;
+/// The free parameters.
+pub const FREE: [&str; 2] = ["A", "B"];
+
+/// The specimen: 8 mm diameter, 4 mm long (the 945 records' size).
+const SPECIMEN: Cylinder = Cylinder {
+    diameter: 8e-3,
+    length: 4e-3,
+};
+
+/// Fitted A and B of both levels against the truth [Pa].
+#[derive(Debug, Clone)]
+pub struct Recovery {
+    pub truth: [f64; 2],
+    pub single_point: [f64; 2],
+    pub mpm: [f64; 2],
+}
+
+/// The drive: relative face velocity on 0.1 µs samples, and the sample indices compared
+/// (every 0.5 µs over 25-75 µs, after the ring-up).
+fn drive() -> (FaceSignals, Vec<usize>) {
+    let time_s: Vec<f64> = (0..=800).map(|k| k as f64 * 1e-7).collect();
+    let relative_velocity_m_per_s = time_s.iter().map(|t| 12.0 * (t / 10e-6).min(1.0)).collect();
+    let incident = vec![0.0; time_s.len()];
+    let signals = FaceSignals {
+        time_s,
+        incident,
+        relative_velocity_m_per_s,
+    };
+    (signals, (250..=750).step_by(5).collect())
+}
+
+/// The MPM level at `layers` points along with friction 0.1, compared on F2.
+fn mpm_level(truth: &Material, layers: usize) -> Result<MpmShpb> {
+    let (signals, samples) = drive();
+    let times = samples.iter().map(|&k| signals.time_s[k]).collect();
+    let theta = truth.param("theta0").expect("a JC material has theta0");
+    let settings = ModelSettings::new(layers, Drive::MeasuredVelocity);
+    let model = ShpbModel::new(SPECIMEN, bars(), signals, settings, preheated(truth, theta))?;
+    Ok(MpmShpb::new(model, times, FaceForces::F2, theta))
+}
+
+/// A block of `model` against `measured`.
+fn block(name: &str, model: Box<dyn ExperimentModel>, measured: &[f64]) -> Result<Block> {
+    let (signals, samples) = drive();
+    let times: Vec<f64> = samples.iter().map(|&k| signals.time_s[k]).collect();
+    let x = times.iter().map(|t| t * 1e6).collect();
+    let label = ("time [µs]", "F2 [kN]");
+    Block::new(
+        name,
+        model,
+        measured.to_vec(),
+        times,
+        x,
+        label.0,
+        label.1,
+        1e-3,
+        1.0,
+    )
+}
+
+/// LM fit of `FREE` on `block` from 0.8 × the truth; the fitted values.
+fn fit(truth: &Material, block: &Block) -> Result<[f64; 2]> {
+    let params = FREE
+        .iter()
+        .map(|&n| {
+            let t = truth.param(n).unwrap();
+            FreeParam::new(n, 0.3 * t, 3.0 * t, 0.8 * t)
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let space = ParamSpace::new(params)?;
+    let objective = Objective::new(*truth, vec![block], space.clone())?;
+    let options = LmOptions {
+        ftol: 1e-6,
+        ..LmOptions::default()
+    };
+    let u0 = space.to_unbounded(&space.starts());
+    let run = levenberg_marquardt(&objective, &u0, JacobianKind::Exact, &options, &|_| {})?;
+    let x = space.to_bounded(&run.u);
+    Ok([x[0], x[1]])
+}
+
+/// Make the data with `truth` and fit both levels.
+pub fn recovery(truth: &Material) -> Result<Recovery> {
+    let measured = mpm_level(truth, DATA_LAYERS)?.predict(truth)?;
+    let (signals, samples) = drive();
+    let theta = truth.param("theta0").unwrap();
+    let specimen = ShpbSpecimen::new(
+        truth,
+        &signals.time_s,
+        &signals.relative_velocity_m_per_s,
+        &samples,
+        SPECIMEN.length,
+        SPECIMEN.area(),
+        theta,
+        1,
+    )?;
+    let single = block(
+        "single point",
+        Box::new(SinglePoint::new(specimen)),
+        &measured,
+    )?;
+    let mpm = block("MPM", Box::new(mpm_level(truth, FIT_LAYERS)?), &measured)?;
+    Ok(Recovery {
+        truth: FREE.map(|n| truth.param(n).unwrap()),
+        single_point: fit(truth, &single)?,
+        mpm: fit(truth, &mpm)?,
+    })
+}
