@@ -89,6 +89,19 @@ pub enum ShapeFunction {
     UGimp,
 }
 
+impl std::str::FromStr for ShapeFunction {
+    type Err = String;
+
+    /// The names of input files: `linear`, `ugimp`.
+    fn from_str(name: &str) -> Result<Self, String> {
+        match name {
+            "linear" => Ok(ShapeFunction::Linear),
+            "ugimp" => Ok(ShapeFunction::UGimp),
+            other => Err(format!("\"{other}\", expected \"linear\" or \"ugimp\"")),
+        }
+    }
+}
+
 /// Bi-/trilinear shape functions (appendix E): the 2ᴰ corners of the point's cell.
 pub struct Linear;
 

@@ -14,9 +14,10 @@ use super::tensile::{Tensile, Thermal};
 use crate::experiment::{load_experiments, Experiment, ShpbExperiment, TensileExperiment};
 use crate::shpb::analyze;
 use crate::shpb_model::{record, Drive, ModelSettings};
-use anyhow::{bail, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 use materials::material::Model;
 use materials::AnyModel;
+use mpm_core::shape::ShapeFunction;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -184,8 +185,13 @@ fn build_block(base: &Material, exp: &Experiment, entry: &ExperimentEntry) -> Re
             "field `level`: \"{other}\", expected \"single-point\" or \"mpm-axisymmetric\" (3D levels are not built yet)"
         ),
     };
-    if level == Level::SinglePoint && (entry.layers.is_some() || entry.friction.is_some()) {
-        bail!("fields `layers` and `friction` belong to level = \"mpm-axisymmetric\"");
+    let mpm_fields = [
+        entry.layers.is_some(),
+        entry.friction.is_some(),
+        entry.shape_function.is_some(),
+    ];
+    if level == Level::SinglePoint && mpm_fields.contains(&true) {
+        bail!("fields `layers`, `friction` and `shape_function` belong to level = \"mpm-axisymmetric\"");
     }
     let max = entry.max_samples.unwrap_or(DEFAULT_MAX_SAMPLES);
     match (exp, level) {
@@ -260,7 +266,7 @@ fn tensile_block(
 }
 
 /// The MPM model of record `e` at its `samples` (indices of the analysis), with the
-/// entry's layers and friction.
+/// entry's layers, friction and shape functions (uGIMP unless named: `mpm_shpb`).
 fn mpm_block_model(
     base: &Material,
     e: &ShpbExperiment,
@@ -270,6 +276,12 @@ fn mpm_block_model(
 ) -> Result<MpmShpb> {
     let mut settings = ModelSettings::new(entry.layers.unwrap_or(20), Drive::MeasuredVelocity);
     settings.friction = entry.friction.unwrap_or(settings.friction);
+    settings.shape_function = match &entry.shape_function {
+        Some(name) => name
+            .parse()
+            .map_err(|e: String| anyhow!("field `shape_function`: {e}"))?,
+        None => ShapeFunction::UGimp,
+    };
     if !(2..=400).contains(&settings.layers) {
         bail!(
             "field `layers`: {}, expected 2 to 400 points along the specimen",

@@ -42,6 +42,8 @@ pub fn levenberg_marquardt(
     progress: &dyn Fn(&HistoryPoint),
 ) -> Result<OptimResult> {
     let mut rec = Recorder::new(progress);
+    // A cheap Jacobian comes with every trial point; else only with accepted ones.
+    let with_trials = objective.jacobian_is_cheap(kind);
     let (r0, j0) = objective.residuals_and_jacobian(u0, kind)?;
     let mut u = DVector::from_column_slice(u0);
     let mut r = DVector::from_vec(r0);
@@ -88,13 +90,12 @@ pub fn levenberg_marquardt(
         }
         let predicted = s - (&r + &jac * &delta).norm_squared();
         let u_new = &u + &delta;
-        let trial = match kind {
-            JacobianKind::Exact => objective
+        let trial = if with_trials {
+            objective
                 .residuals_and_jacobian(u_new.as_slice(), kind)
-                .map(|(r, j)| (r, Some(j))),
-            JacobianKind::FiniteDifference => {
-                objective.residuals(u_new.as_slice()).map(|r| (r, None))
-            }
+                .map(|(r, j)| (r, Some(j)))
+        } else {
+            objective.residuals(u_new.as_slice()).map(|r| (r, None))
         };
         let accepted = match trial {
             Ok((r_new, j_new)) => {

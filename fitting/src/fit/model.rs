@@ -36,6 +36,13 @@ pub trait ExperimentModel: Send + Sync {
         FD_STEP
     }
 
+    /// Whether `predict_with_jacobian` costs about one `predict` (dual numbers), so that an
+    /// optimizer may take the Jacobian at every trial point. Default: no (finite
+    /// differences cost one run per free parameter more).
+    fn jacobian_is_cheap(&self) -> bool {
+        false
+    }
+
     /// Prediction and its Jacobian d(prediction)/d(parameter) (rows: samples, columns:
     /// `free` in order). Default: forward finite differences (`finite_difference`).
     fn predict_with_jacobian(

@@ -1,8 +1,8 @@
 //! No inverse crime (issue 11): synthetic SHPB data from a finer model than the ones
-//! fitted. The data are the transmitter-face force F2 of the axisymmetric MPM model at
-//! `DATA_LAYERS` points along the specimen, with Coulomb friction μ = 0.1 at the faces,
+//! fitted. The data are the transmitter-face force F2 of the axisymmetric MPM model (uGIMP)
+//! at `DATA_LAYERS` points along the specimen, with Coulomb friction μ = 0.1 at the faces,
 //! radial inertia and barrelling, under a measured-style drive (the relative face
-//! velocity ramped to 12 m/s over 10 µs, ε̇ ≈ 3000 1/s, 80 µs, ε ≈ 0.23). Two levels fit
+//! velocity ramped to 24 m/s over 5 µs, ε̇ ≈ 6000 1/s, 40 µs, ε ≈ 0.23). Two levels fit
 //! A and B (N and C at the truth) from 0.8 × the truth:
 //!
 //! - the single-point level (uniform, frictionless, inertia-free specimen), which must
@@ -24,10 +24,11 @@ use crate::shpb_model::record::preheated;
 use crate::shpb_model::{verify::bars, Cylinder, Drive, FaceSignals, ModelSettings, ShpbModel};
 use anyhow::Result;
 use materials::material::Model;
+use mpm_core::shape::ShapeFunction;
 
 /// Points along the specimen of the data and of the fitted MPM level.
-pub const DATA_LAYERS: usize = 40;
-pub const FIT_LAYERS: usize = 20;
+pub const DATA_LAYERS: usize = 80;
+pub const FIT_LAYERS: usize = 40;
 /// The free parameters.
 pub const FREE: [&str; 2] = ["A", "B"];
 
@@ -45,11 +46,11 @@ pub struct Recovery {
     pub mpm: [f64; 2],
 }
 
-/// The drive: relative face velocity on 0.1 µs samples, and the sample indices compared
-/// (every 0.5 µs over 25-75 µs, after the ring-up).
+/// The drive: relative face velocity on 0.05 µs samples, and the sample indices compared
+/// (every 0.25 µs over 12.5-37.5 µs, after the ring-up).
 fn drive() -> (FaceSignals, Vec<usize>) {
-    let time_s: Vec<f64> = (0..=800).map(|k| k as f64 * 1e-7).collect();
-    let relative_velocity_m_per_s = time_s.iter().map(|t| 12.0 * (t / 10e-6).min(1.0)).collect();
+    let time_s: Vec<f64> = (0..=800).map(|k| k as f64 * 5e-8).collect();
+    let relative_velocity_m_per_s = time_s.iter().map(|t| 24.0 * (t / 5e-6).min(1.0)).collect();
     let incident = vec![0.0; time_s.len()];
     let signals = FaceSignals {
         time_s,
@@ -59,12 +60,13 @@ fn drive() -> (FaceSignals, Vec<usize>) {
     (signals, (250..=750).step_by(5).collect())
 }
 
-/// The MPM level at `layers` points along with friction 0.1, compared on F2.
+/// The MPM level at `layers` points along (uGIMP) with friction 0.1, compared on F2.
 fn mpm_level(truth: &Material, layers: usize) -> Result<MpmShpb> {
     let (signals, samples) = drive();
     let times = samples.iter().map(|&k| signals.time_s[k]).collect();
     let theta = truth.param("theta0").expect("a JC material has theta0");
-    let settings = ModelSettings::new(layers, Drive::MeasuredVelocity);
+    let mut settings = ModelSettings::new(layers, Drive::MeasuredVelocity);
+    settings.shape_function = ShapeFunction::UGimp;
     let model = ShpbModel::new(SPECIMEN, bars(), signals, settings, preheated(truth, theta))?;
     Ok(MpmShpb::new(model, times, FaceForces::F2, theta))
 }
@@ -109,9 +111,10 @@ fn fit(truth: &Material, block: &Block) -> Result<[f64; 2]> {
     Ok([x[0], x[1]])
 }
 
-/// Make the data with `truth` and fit both levels.
-pub fn recovery(truth: &Material) -> Result<Recovery> {
-    let measured = mpm_level(truth, DATA_LAYERS)?.predict(truth)?;
+/// Make the data with `truth` at `data_layers` points along and fit both levels, the MPM
+/// one at `fit_layers`.
+pub fn recovery(truth: &Material, data_layers: usize, fit_layers: usize) -> Result<Recovery> {
+    let measured = mpm_level(truth, data_layers)?.predict(truth)?;
     let (signals, samples) = drive();
     let theta = truth.param("theta0").unwrap();
     let specimen = ShpbSpecimen::new(
@@ -129,7 +132,7 @@ pub fn recovery(truth: &Material) -> Result<Recovery> {
         Box::new(SinglePoint::new(specimen)),
         &measured,
     )?;
-    let mpm = block("MPM", Box::new(mpm_level(truth, FIT_LAYERS)?), &measured)?;
+    let mpm = block("MPM", Box::new(mpm_level(truth, fit_layers)?), &measured)?;
     Ok(Recovery {
         truth: FREE.map(|n| truth.param(n).unwrap()),
         single_point: fit(truth, &single)?,

@@ -174,6 +174,12 @@ impl<'a> Objective<'a> {
         with_values(&self.base, &self.space.names(), p)
     }
 
+    /// Whether a Jacobian of `kind` costs about one pass: every model's own, and each of
+    /// them from dual numbers.
+    pub fn jacobian_is_cheap(&self, kind: JacobianKind) -> bool {
+        kind == JacobianKind::Exact && self.blocks.iter().all(|b| b.model.jacobian_is_cheap())
+    }
+
     /// Total number of residuals.
     pub fn len(&self) -> usize {
         self.blocks.iter().map(|b| b.measured.len()).sum()
@@ -214,13 +220,13 @@ impl<'a> Objective<'a> {
         let dpdu = self.space.derivatives(u);
         let material = self.material(&p);
         let names = self.space.names();
-        match kind {
-            JacobianKind::Exact => self.jacobians.fetch_add(1, Ordering::Relaxed),
+        if self.jacobian_is_cheap(kind) {
+            self.jacobians.fetch_add(1, Ordering::Relaxed);
+        } else {
             // One base pass plus one pass per parameter.
-            JacobianKind::FiniteDifference => self
-                .evaluations
-                .fetch_add(1 + names.len(), Ordering::Relaxed),
-        };
+            self.evaluations
+                .fetch_add(1 + names.len(), Ordering::Relaxed);
+        }
         let parts: Vec<(Vec<f64>, DMatrix<f64>)> = self
             .blocks
             .par_iter()

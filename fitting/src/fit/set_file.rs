@@ -26,6 +26,8 @@
 //!                             #   the MPM model with friction and inertia, `fit::mpm_shpb`)
 //! layers = 20                 # mpm-axisymmetric: points along the specimen (default 20)
 //! friction = 0.1              # mpm-axisymmetric: Coulomb μ at the faces (default 0.1)
+//! shape_function = "ugimp"    # mpm-axisymmetric: "ugimp" (default) | "linear" (drifts
+//!                             #   under refinement, `fit::mpm_shpb`)
 //! thermal = "isothermal"      # tensile: "isothermal" | "adiabatic" (default: adiabatic above 1 1/s)
 //! window = [15e-6, 115e-6]    # shpb (required): window [s] after the incident pulse start at the
 //!                             #   faces, or "plateau": the strain-rate plateau of `shpb::analyze`
@@ -102,6 +104,7 @@ pub struct ExperimentEntry {
     pub max_samples: Option<usize>,
     pub layers: Option<usize>,
     pub friction: Option<f64>,
+    pub shape_function: Option<String>,
 }
 
 /// An SHPB fit window: explicit times [s] or the strain-rate plateau (`"plateau"`).

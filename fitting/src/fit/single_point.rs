@@ -130,6 +130,10 @@ impl<O: Observable> ExperimentModel for SinglePoint<O> {
         self.evaluate(material)
     }
 
+    fn jacobian_is_cheap(&self) -> bool {
+        true
+    }
+
     fn predict_with_jacobian(
         &self,
         material: &Material,

@@ -19,7 +19,6 @@ use crate::experiment::ShpbExperiment;
 use crate::shpb::{analyze, ShpbAnalysis};
 use anyhow::{bail, Context, Result};
 use materials::plasticity::ElastoPlastic;
-use mpm_core::shape::ShapeFunction;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -114,15 +113,11 @@ impl ShpbScene {
                 format!("{}, expected 0 < safety <= 1", settings.safety)
             ));
         }
-        settings.shape_function = match f.shape_function.as_deref() {
-            None => settings.shape_function,
-            Some("linear") => ShapeFunction::Linear,
-            Some("ugimp") => ShapeFunction::UGimp,
-            Some(other) => bail!(field(
-                "shape_function",
-                format!("\"{other}\", expected \"linear\" or \"ugimp\"")
-            )),
-        };
+        if let Some(name) = &f.shape_function {
+            settings.shape_function = name
+                .parse()
+                .map_err(|e: String| field("shape_function", e))?;
+        }
         let dir = path.parent().unwrap_or(Path::new("."));
         let experiment = ShpbExperiment::load(&dir.join(&f.experiment))?;
         let analysis = analyze(&experiment)
