@@ -141,7 +141,10 @@ pub fn levenberg_marquardt(
         }
     }
     let name = match kind {
-        JacobianKind::Exact => "Levenberg-Marquardt (exact AD Jacobian)",
+        _ if with_trials => "Levenberg-Marquardt (exact AD Jacobian)",
+        JacobianKind::Exact => {
+            "Levenberg-Marquardt (each model's Jacobian: AD, or finite differences of an MPM level)"
+        }
         JacobianKind::FiniteDifference => "Levenberg-Marquardt (finite-difference Jacobian)",
     };
     Ok(OptimResult {

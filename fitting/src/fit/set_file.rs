@@ -5,7 +5,8 @@
 //! ```toml
 //! name = "42CrMo4 QT660, synthetic"
 //! material = "../materials/42crmo4_qt660.toml"   # base parameter set (fixed values)
-//! optimizer = "lm"            # "lm" (exact AD Jacobian) | "lm-fd" | "nelder-mead"
+//! optimizer = "lm"            # "lm" (each model's Jacobian: AD, or finite differences of
+//!                             #   an MPM level) | "lm-fd" | "nelder-mead"
 //! starts = 3                  # multi-start: the given start plus random starts
 //! seed = 1                    # of the random starts
 //! ftol = 1e-9                 # optional: LM stops when S falls by less than this fraction
