@@ -12,7 +12,7 @@ use super::shpb_specimen::ShpbSpecimen;
 use super::single_point::SinglePoint;
 use super::tensile::{Tensile, Thermal};
 use crate::experiment::{load_experiments, Experiment, ShpbExperiment, TensileExperiment};
-use crate::shpb::analyze;
+use crate::shpb::{analyze, ShpbAnalysis};
 use crate::shpb_model::{record, Drive, ModelSettings};
 use anyhow::{anyhow, bail, Context, Result};
 use materials::material::Model;
@@ -265,11 +265,13 @@ fn tensile_block(
     Ok(block)
 }
 
-/// The MPM model of record `e` at its `samples` (indices of the analysis), with the
-/// entry's layers, friction and shape functions (uGIMP unless named: `mpm_shpb`).
+/// The MPM model of record `e` (processed into `analysis`) at its `samples` (indices of
+/// the analysis), with the entry's layers, friction and shape functions (uGIMP unless
+/// named: `mpm_shpb`).
 fn mpm_block_model(
     base: &Material,
     e: &ShpbExperiment,
+    analysis: &ShpbAnalysis,
     entry: &ExperimentEntry,
     samples: &[usize],
     forces: FaceForces,
@@ -294,9 +296,8 @@ fn mpm_block_model(
             settings.friction
         );
     }
-    let analysis = analyze(e)?;
     let times = samples.iter().map(|&k| analysis.time_s[k]).collect();
-    let model = record::model(e, &analysis, settings, base)?;
+    let model = record::model(e, analysis, settings, base)?;
     Ok(MpmShpb::new(model, times, forces, e.temperature_k))
 }
 
@@ -327,7 +328,8 @@ fn shpb_block(
             bail!("field `forces`: \"{other}\", expected \"both\", \"f1\" or \"f2\"")
         }
     };
-    let face = face_signals(e)?;
+    let analysis = analyze(e)?;
+    let face = face_signals(&analysis);
     let range = match &entry.window {
         None => bail!("field `window`: an SHPB experiment needs its specimen-face time window [t_min, t_max] in s, or \"plateau\""),
         Some(Window::Named(name)) if name == "plateau" => face.plateau.start.max(1)..face.plateau.end,
@@ -377,7 +379,9 @@ fn shpb_block(
             e.temperature_k,
             channel.count(),
         )?)),
-        Level::MpmAxisymmetric => Box::new(mpm_block_model(base, e, entry, &samples, channel)?),
+        Level::MpmAxisymmetric => Box::new(mpm_block_model(
+            base, e, &analysis, entry, &samples, channel,
+        )?),
     };
     let first = if channel == FaceForces::F2 {
         &face.f2_n

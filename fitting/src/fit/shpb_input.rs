@@ -12,9 +12,7 @@
 //! R = 2 |F1 − F2| / |F1 + F2| come along, so that a fit can compare the model only where
 //! the specimen deforms at constant rate.
 
-use crate::experiment::ShpbExperiment;
-use crate::shpb::analyze;
-use anyhow::Result;
+use crate::shpb::ShpbAnalysis;
 use std::ops::Range;
 
 /// Specimen-face signals from the analysis.
@@ -34,16 +32,15 @@ pub struct FaceSignals {
     pub plateau_equilibrium_ratio: f64,
 }
 
-pub fn face_signals(exp: &ShpbExperiment) -> Result<FaceSignals> {
-    let a = analyze(exp)?;
+pub fn face_signals(a: &ShpbAnalysis) -> FaceSignals {
     let p = &a.pulses;
     let offset = p.incident_at_gauge_s.0 + p.delay_incident_s - p.window_at_faces_s.0;
-    Ok(FaceSignals {
+    FaceSignals {
         time_s: a.time_s.iter().map(|t| t - offset).collect(),
-        velocity_m_per_s: a.relative_velocity_m_per_s,
-        f1_n: a.force_front_n,
-        f2_n: a.force_back_n,
+        velocity_m_per_s: a.relative_velocity_m_per_s.clone(),
+        f1_n: a.force_front_n.clone(),
+        f2_n: a.force_back_n.clone(),
         plateau: a.plateau.range.clone(),
         plateau_equilibrium_ratio: a.plateau.equilibrium_ratio,
-    })
+    }
 }
