@@ -1,6 +1,7 @@
 //! Johnson-Cook parameter sets written for the codes that consume them: an Abaqus material
-//! block (`*PLASTIC, HARDENING=JOHNSON COOK` with `*RATE DEPENDENT, TYPE=JOHNSON COOK`) and
-//! a generic JSON card (every value with its unit), in a stated unit system.
+//! block (`*PLASTIC, HARDENING=JOHNSON COOK` with `*RATE DEPENDENT, TYPE=JOHNSON COOK`), an
+//! LS-DYNA `*MAT_JOHNSON_COOK` with its `*EOS_LINEAR_POLYNOMIAL`, and a generic JSON card
+//! (every value with its unit), in a stated unit system.
 //!
 //! The model is the one of `materials::flow_stress` (eq. 4.52):
 //! σ_y = [A + B ε_p^N] [1 + C ln(ε̇_p/ε̇0)] [1 − θ*^M], θ* = (θ − θ0)/(θm − θ0), with the rate
@@ -9,10 +10,10 @@
 //! they differ by the elastic volume change J_e = 1 − p/K (0.6 % at 1 GPa of pressure in
 //! steel), which the card header says. Temperatures are in K in every unit system.
 //!
-//! No LS-DYNA `*MAT_JOHNSON_COOK` card yet: its failure and pressure-cutoff fields
-//! (D1-D5, PC, SPALL, EROD) decide whether elements erode, and their defaults could not be
-//! checked against the keyword manual here; a card that erodes at first yield would be a
-//! trap.
+//! The LS-DYNA card sets every field that could erode an element or cut its pressure
+//! instead of leaving it to the code's defaults (which this project could not check
+//! against the keyword manual): failure strain D1 = 1e20 with D2-D5 = 0, pressure cutoff
+//! PC = -1e20 with SPALL = 1. mpw identifies no failure model; the user adds theirs.
 
 use crate::fit::model::Material;
 use anyhow::{bail, Result};
@@ -196,6 +197,135 @@ pub fn abaqus(m: &Material, name: &str, source: &str, units: &Units) -> Result<S
     );
     let _ = writeln!(out, "*SPECIFIC HEAT\n {},", v("c_theta")?);
     let _ = writeln!(out, "*INELASTIC HEAT FRACTION\n {},", v("gamma_tq")?);
+    Ok(out)
+}
+
+/// `x` in a 10-character fixed-format field: right-aligned in at most 9 characters, so that
+/// fields stay apart on the line, the written form with the smallest error (plain decimals
+/// or a mantissa with `E` exponent; at least 4 significant digits for a positive value
+/// with a two-digit exponent, more for most).
+pub fn field10(x: f64) -> String {
+    let plain = (0..=9).rev().map(|p| format!("{x:.p$}"));
+    let scientific = (0..=8).rev().map(|p| format!("{x:.p$E}"));
+    let best = plain
+        .chain(scientific)
+        .filter(|s| s.len() <= 9)
+        .min_by(|a, b| {
+            let err = |s: &String| (s.parse::<f64>().unwrap_or(f64::INFINITY) - x).abs();
+            err(a).total_cmp(&err(b)).then(a.len().cmp(&b.len()))
+        })
+        .unwrap_or_else(|| "0".into());
+    format!("{best:>10}")
+}
+
+/// One LS-DYNA card: a `$#` line of field names over the values, 10 characters each.
+fn lsdyna_card(out: &mut String, names: &[&str], values: &[String]) {
+    let names: String = names.iter().map(|n| format!("{n:>10}")).collect();
+    let _ = writeln!(out, "$#{}", &names[2..]);
+    let _ = writeln!(out, "{}", values.concat());
+}
+
+/// An LS-DYNA `*MAT_JOHNSON_COOK` (VP = 1: the rate term takes the plastic strain rate, as
+/// mpw's does) with failure and pressure cutoff explicitly off, and the
+/// `*EOS_LINEAR_POLYNOMIAL` it needs in solid elements (C1 = K = E / 3(1 − 2ν)), both with
+/// identifier `id`.
+pub fn lsdyna(m: &Material, name: &str, source: &str, units: &Units, id: u32) -> Result<String> {
+    let si = |n: &str| value(m, n, units).map(|(x, _)| x);
+    let f = |x: f64| field10(x);
+    let v = |n: &str| si(n).map(f);
+    let (e, nu) = (si("E")?, si("nu")?);
+    let (g, k) = (e / (2.0 * (1.0 + nu)), e / (3.0 * (1.0 - 2.0 * nu)));
+    let id = format!("{id:>10}");
+    let mut out = String::new();
+    header(&mut out, "$", source, units);
+    let _ = writeln!(out, "$ material {name}; failure off (D1 = 1e20, D2-D5 = 0; PC = -1e20, SPALL = 1): add your own");
+    let gamma_tq = si("gamma_tq")?;
+    let heating = if gamma_tq > 0.0 {
+        format!(
+            "a code that turns all plastic work into heat matches mpw with CP / gamma_tq = {}",
+            f(si("c_theta")? / gamma_tq).trim()
+        )
+    } else {
+        "mpw heats nothing; a code that turns plastic work into heat will".into()
+    };
+    let _ = writeln!(out, "$ gamma_tq = {gamma_tq} has no field here: {heating}");
+    let _ = writeln!(
+        out,
+        "$ below EPSO mpw's rate term is 1; the part that uses this material names EOSID {}",
+        id.trim()
+    );
+    let _ = writeln!(out, "*MAT_JOHNSON_COOK");
+    let one = f(1.0);
+    let zero = f(0.0);
+    lsdyna_card(
+        &mut out,
+        &["mid", "ro", "g", "e", "pr", "dtf", "vp", "rateop"],
+        &[
+            id.clone(),
+            v("rho")?,
+            f(g),
+            f(e),
+            f(nu),
+            zero.clone(),
+            one.clone(),
+            zero.clone(),
+        ],
+    );
+    lsdyna_card(
+        &mut out,
+        &["a", "b", "n", "c", "m", "tm", "tr", "epso"],
+        &[
+            v("A")?,
+            v("B")?,
+            v("N")?,
+            v("C")?,
+            v("M")?,
+            v("theta_m")?,
+            v("theta0")?,
+            v("alpha_dot0")?,
+        ],
+    );
+    lsdyna_card(
+        &mut out,
+        &["cp", "pc", "spall", "it", "d1", "d2", "d3", "d4"],
+        &[
+            v("c_theta")?,
+            f(-1e20),
+            one,
+            zero.clone(),
+            f(1e20),
+            zero.clone(),
+            zero.clone(),
+            zero.clone(),
+        ],
+    );
+    lsdyna_card(
+        &mut out,
+        &["d5", "c2/p", "erod", "efmin", "numint"],
+        &[
+            zero.clone(),
+            zero.clone(),
+            zero.clone(),
+            zero.clone(),
+            zero.clone(),
+        ],
+    );
+    let _ = writeln!(out, "*EOS_LINEAR_POLYNOMIAL");
+    lsdyna_card(
+        &mut out,
+        &["eosid", "c0", "c1", "c2", "c3", "c4", "c5", "c6"],
+        &[
+            id,
+            zero.clone(),
+            f(k),
+            zero.clone(),
+            zero.clone(),
+            zero.clone(),
+            zero.clone(),
+            zero.clone(),
+        ],
+    );
+    lsdyna_card(&mut out, &["e0", "v0"], &[zero, f(1.0)]);
     Ok(out)
 }
 

@@ -1,6 +1,7 @@
 //! Heat maps of a scalar on a regular (x, y) grid as PNG, with a logarithmic colour
-//! scale (errors spanning decades), a colour bar and cells left grey where the value
-//! is missing (for example where a method failed).
+//! scale (errors spanning decades), a labelled colour bar (values below its range drawn
+//! in its lowest colour, as the bar says) and cells left grey where the value is missing,
+//! with a key saying why.
 
 use anyhow::Result;
 use plotters::prelude::*;
@@ -17,7 +18,14 @@ pub struct HeatMap {
     pub value: Vec<Vec<Option<f64>>>,
     /// Colour range (log10) of the values.
     pub log10_range: (f64, f64),
+    /// What the colour bar shows (`relative stress error`); drawn as `log10 of ...`.
+    pub value_label: String,
+    /// Why a value is missing, for the key of grey cells (`update failed`).
+    pub missing_label: String,
 }
+
+/// Font of tick labels and axis descriptions [px].
+const FONT: u32 = 16;
 
 fn edges(c: &[f64]) -> Vec<f64> {
     let n = c.len();
@@ -32,6 +40,8 @@ fn edges(c: &[f64]) -> Vec<f64> {
     e
 }
 
+const GREY: RGBColor = RGBColor(170, 170, 170);
+
 fn colour(t: f64) -> RGBColor {
     // Dark blue → green → yellow (perceptually ordered, colour-blind friendly enough).
     let t = t.clamp(0.0, 1.0);
@@ -43,9 +53,10 @@ fn colour(t: f64) -> RGBColor {
 
 impl HeatMap {
     pub fn write_png(&self, path: &Path) -> Result<()> {
-        let root = BitMapBackend::new(path, (1000, 800)).into_drawing_area();
+        let root = BitMapBackend::new(path, (1000, 830)).into_drawing_area();
         root.fill(&WHITE)?;
-        let (plot, bar) = root.split_horizontally(860);
+        let (main, key_row) = root.split_vertically(800);
+        let (plot, bar) = main.split_horizontally(850);
         let (xe, ye) = (edges(&self.x), edges(&self.y));
         let mut chart = ChartBuilder::on(&plot)
             .caption(&self.title, ("sans-serif", 24))
@@ -53,19 +64,28 @@ impl HeatMap {
             .x_label_area_size(50)
             .y_label_area_size(70)
             .build_cartesian_2d(xe[0]..xe[xe.len() - 1], ye[0]..ye[ye.len() - 1])?;
+        let whole = |v: &f64| format!("{v:.0}");
         chart
             .configure_mesh()
             .disable_mesh()
             .x_desc(&self.x_label)
             .y_desc(&self.y_label)
+            .x_label_formatter(&whole)
+            .y_label_formatter(&whole)
+            .label_style(("sans-serif", FONT))
+            .axis_desc_style(("sans-serif", FONT))
             .draw()?;
         let (lo, hi) = self.log10_range;
+        let mut missing = false;
         for (i, row) in self.value.iter().enumerate() {
             for (j, v) in row.iter().enumerate() {
                 let fill = match v {
                     Some(v) if *v > 0.0 => colour((v.log10() - lo) / (hi - lo)),
                     Some(_) => colour(0.0),
-                    None => RGBColor(170, 170, 170),
+                    None => {
+                        missing = true;
+                        GREY
+                    }
                 };
                 chart.draw_series(std::iter::once(Rectangle::new(
                     [(xe[i], ye[j]), (xe[i + 1], ye[j + 1])],
@@ -76,14 +96,22 @@ impl HeatMap {
         let mut scale = ChartBuilder::on(&bar)
             .margin_top(60)
             .margin_bottom(65)
-            .margin_right(10)
-            .y_label_area_size(70)
+            .margin_right(30)
+            .y_label_area_size(80)
             .build_cartesian_2d(0.0..1.0, lo..hi)?;
+        let decade = |v: &f64| match (*v - lo).abs() < 1e-9 {
+            true => format!("≤ {v:.1}"),
+            false => format!("{v:.1}"),
+        };
         scale
             .configure_mesh()
             .disable_mesh()
             .disable_x_axis()
-            .y_desc("log10 of value")
+            .y_labels(((hi - lo) * 2.0).round() as usize + 1)
+            .y_label_formatter(&decade)
+            .y_desc(format!("log10 of the {}", self.value_label))
+            .label_style(("sans-serif", FONT))
+            .axis_desc_style(("sans-serif", FONT))
             .draw()?;
         let n = 100;
         for k in 0..n {
@@ -95,6 +123,11 @@ impl HeatMap {
                 [(0.0, a), (1.0, b)],
                 colour(k as f64 / n as f64).filled(),
             )))?;
+        }
+        if missing {
+            let key = format!("grey: {}", self.missing_label);
+            key_row.draw(&Rectangle::new([(90, 4), (106, 20)], GREY.filled()))?;
+            key_row.draw(&Text::new(key, (112, 4), ("sans-serif", FONT)))?;
         }
         root.present()?;
         Ok(())

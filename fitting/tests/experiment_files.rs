@@ -218,6 +218,55 @@ fn shpb_volts_without_bridge_is_an_error() {
     );
 }
 
+/// `polarity = "compression-positive"` flips both gauges on loading; an unknown polarity
+/// is an error naming its line; calibrated delays replace distance / c0 for timing only.
+#[test]
+fn shpb_polarity_and_calibrated_delays() {
+    let csv = "t_us,inc_v,tr_ue\n0,-100,-50\n1,200,25\n";
+    let positive = SHPB_TOML.replace(
+        "temperature = \"293 K\"\n",
+        "temperature = \"293 K\"\npolarity = \"compression-positive\"\n",
+    );
+    let delays = SHPB_TOML.replace(
+        "transmitted_gauge_to_specimen = \"0.5 m\"\n",
+        "transmitted_gauge_to_specimen = \"0.5 m\"\nincident_gauge_delay = \"210 us\"\ntransmitted_gauge_delay = \"105 us\"\n",
+    );
+    let dir = folder(
+        "polarity",
+        &[
+            ("s.csv", csv),
+            ("s.toml", SHPB_TOML),
+            ("p.toml", &positive),
+            ("d.toml", &delays),
+            (
+                "bad.toml",
+                &positive.replace("compression-positive", "tension"),
+            ),
+        ],
+    );
+    let plain = ShpbExperiment::load(&dir.join("s.toml")).unwrap();
+    let flipped = ShpbExperiment::load(&dir.join("p.toml")).unwrap();
+    for k in 0..2 {
+        assert_eq!(flipped.incident[k], -plain.incident[k]);
+        assert_eq!(flipped.transmitted[k], -plain.transmitted[k]);
+    }
+    let e = ShpbExperiment::load(&dir.join("bad.toml")).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::InvalidValue { at, problem, .. } if at.line == 4 && problem.contains("compression-positive")),
+        "{e}"
+    );
+    // distance / c0 = 1 m / 5000 m/s = 200 µs unless calibrated
+    assert!((plain.bar.incident_delay_s() - 200e-6).abs() < 1e-15);
+    assert!((plain.bar.transmitted_delay_s() - 100e-6).abs() < 1e-15);
+    let calibrated = ShpbExperiment::load(&dir.join("d.toml")).unwrap();
+    assert!((calibrated.bar.incident_delay_s() - 210e-6).abs() < 1e-15);
+    assert!((calibrated.bar.transmitted_delay_s() - 105e-6).abs() < 1e-15);
+    assert_eq!(
+        calibrated.bar.wave_speed_m_per_s(),
+        plain.bar.wave_speed_m_per_s()
+    );
+}
+
 /// The real 304L tension files, read as they are, if the shared data folder exists.
 #[test]
 fn real_304l_file_reads_as_it_is() {

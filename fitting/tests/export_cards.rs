@@ -1,8 +1,9 @@
 //! Exported Johnson-Cook cards read back: every field of the Abaqus block and of the JSON
 //! card, converted back to SI, equals the material's value (to 1e-14 relative: one
-//! multiplication and one division by the unit factor), in every unit system.
+//! multiplication and one division by the unit factor), in every unit system; the LS-DYNA
+//! card's 10-character fields to the precision of 9 written characters.
 
-use fitting::export::{abaqus, json, UNIT_SYSTEMS};
+use fitting::export::{abaqus, field10, json, lsdyna, UNIT_SYSTEMS};
 use fitting::fit::model::Material;
 use materials::material::Model;
 use std::path::Path;
@@ -144,4 +145,114 @@ fn known_values_in_the_mm_unit_systems() {
     ));
     assert!(close(data_line(&card, "*SPECIFIC HEAT")[0], 500.0));
     assert!(fitting::export::units("inch").is_err());
+}
+
+/// The fixed-format cards (10 characters per field) after the keyword line `keyword`, up
+/// to the next keyword.
+fn lsdyna_cards(card: &str, keyword: &str) -> Vec<Vec<f64>> {
+    card.lines()
+        .skip_while(|l| *l != keyword)
+        .skip(1)
+        .take_while(|l| !l.starts_with('*'))
+        .filter(|l| !l.starts_with('$'))
+        .map(|l| {
+            (0..l.len())
+                .step_by(10)
+                .map(|i| l[i..(i + 10).min(l.len())].trim())
+                .map(|f| f.parse().unwrap_or_else(|_| panic!("{keyword}: {f:?}")))
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn lsdyna_card_reads_back_in_every_unit_system() {
+    for file in ["ss304l.toml", "aisi_4340.toml", "ofhc_copper.toml"] {
+        let m = material(file);
+        let p = |n: &str| m.param(n).unwrap();
+        for u in UNIT_SYSTEMS {
+            let card = lsdyna(&m, "X", file, &u, 7).unwrap();
+            assert!(card.contains(&format!("units: {}", u.description)));
+            let (e, nu, s) = (p("E") * u.stress, p("nu"), u.stress);
+            let mat = [
+                vec![
+                    7.0,
+                    p("rho") * u.density,
+                    e / (2.0 * (1.0 + nu)),
+                    e,
+                    nu,
+                    0.0,
+                    1.0,
+                    0.0,
+                ],
+                vec![
+                    p("A") * s,
+                    p("B") * s,
+                    p("N"),
+                    p("C"),
+                    p("M"),
+                    p("theta_m"),
+                    p("theta0"),
+                    p("alpha_dot0") * u.rate,
+                ],
+                vec![
+                    p("c_theta") * u.specific_heat,
+                    -1e20,
+                    1.0,
+                    0.0,
+                    1e20,
+                    0.0,
+                    0.0,
+                    0.0,
+                ],
+                vec![0.0; 5],
+            ];
+            let eos = [
+                vec![
+                    7.0,
+                    0.0,
+                    e / (3.0 * (1.0 - 2.0 * nu)),
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                ],
+                vec![0.0, 1.0],
+            ];
+            for (keyword, expected) in [
+                ("*MAT_JOHNSON_COOK", &mat[..]),
+                ("*EOS_LINEAR_POLYNOMIAL", &eos[..]),
+            ] {
+                let got = lsdyna_cards(&card, keyword);
+                assert_eq!(got.len(), expected.len(), "{file} {} {keyword}", u.name);
+                for (g, x) in got.iter().flatten().zip(expected.iter().flatten()) {
+                    // 4 significant digits are the least 9 characters hold (d.dddE-xx)
+                    assert!(
+                        (g - x).abs() <= 5e-4 * x.abs(),
+                        "{file} {} {keyword}: {g} vs {x}",
+                        u.name
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn ten_character_fields_keep_the_digits_they_can() {
+    for (x, written) in [
+        (207e9, "2.07E11"),
+        (7.83e-9, "7.83E-9"),
+        (79615.384615, "79615.385"),
+        (0.014, "0.014"),
+        (-1e20, "-1E20"),
+        (1573.15, "1573.15"),
+        (1.23456789e-12, "1.235E-12"),
+    ] {
+        let f = field10(x);
+        assert_eq!(f.len(), 10, "{f:?}");
+        assert!(f.starts_with(' '), "fields stay apart: {f:?}");
+        assert_eq!(f.trim(), written);
+    }
 }

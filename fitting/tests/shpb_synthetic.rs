@@ -91,3 +91,56 @@ fn a_record_without_a_pulse_is_an_error() {
     let e = analyze(&synthetic.experiment).unwrap_err();
     assert!(matches!(e, ShpbError::NoIncidentPulse { .. }), "{e}");
 }
+
+/// A record whose pulses contradict the compression-negative convention is refused with
+/// what was seen, never processed with the reflected pulse taken for the incident one
+/// (issue 12: the inverted record gave exit 0 and an equilibrium ratio of 1.74); a
+/// reversed transmitted gauge alone is refused too.
+#[test]
+fn a_record_of_the_wrong_polarity_is_refused() {
+    let synthetic = SyntheticShpb::generate(&SyntheticSetup::steel_945_like(5));
+    assert!(analyze(&synthetic.experiment).is_ok());
+    let negate = |v: &mut Vec<f64>| v.iter_mut().for_each(|x| *x = -*x);
+    let mut inverted = synthetic.experiment.clone();
+    negate(&mut inverted.incident);
+    negate(&mut inverted.transmitted);
+    let e = analyze(&inverted).unwrap_err();
+    assert!(matches!(e, ShpbError::TensileIncidentPulse { .. }), "{e}");
+    assert!(e.to_string().contains("compression-positive"), "{e}");
+    let mut reversed = synthetic.experiment.clone();
+    negate(&mut reversed.transmitted);
+    let e = analyze(&reversed).unwrap_err();
+    assert!(
+        matches!(e, ShpbError::TensileTransmittedPulse { .. }),
+        "{e}"
+    );
+}
+
+/// Calibrated delays that differ from distance / c0 (here 2 % longer, as a calibrated
+/// reflected time against √(E/ρ) in issue 12) are used for timing: a record generated
+/// with them processes back to its curve within 1 %; read with d/c0 instead, its
+/// reflected pulse arrives 2 · 0.02 · d_i/c0 = 7.9 µs later, relative to the predicted
+/// time, than with the delays stated (the arrival diagnostic reports it).
+#[test]
+fn calibrated_delays_align_the_pulses() {
+    let mut setup = SyntheticSetup::steel_945_like(6);
+    let bar = setup.bar.clone();
+    setup.bar.incident_delay_calibrated_s = Some(1.02 * bar.incident_delay_s());
+    setup.bar.transmitted_delay_calibrated_s = Some(1.02 * bar.transmitted_delay_s());
+    let calibrated = synthetic_round_trip(&setup).unwrap();
+    assert!(
+        calibrated.stress_error_3wave < 0.01,
+        "{}",
+        calibrated.stress_error_3wave
+    );
+    let synthetic = SyntheticShpb::generate(&setup);
+    let stated = analyze(&synthetic.experiment).unwrap().pulses;
+    let mut uncalibrated = synthetic.experiment.clone();
+    uncalibrated.bar.incident_delay_calibrated_s = None;
+    uncalibrated.bar.transmitted_delay_calibrated_s = None;
+    let p = analyze(&uncalibrated).unwrap().pulses;
+    // the reflected pulse arrives 2 · 0.02 · d_i/c0 = 7.9 µs later than d/c0 predicts
+    let expected = 2.0 * 0.02 * bar.incident_delay_s();
+    let late = p.reflected_arrival_offset_s - stated.reflected_arrival_offset_s;
+    assert!((late - expected).abs() < 0.1e-6, "{late} vs {expected}");
+}

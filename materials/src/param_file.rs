@@ -10,7 +10,8 @@
 //! [thermal]      # (johnson-cook) theta0 [K], c_theta [J/(kg K)], alpha_sigma [1/K], gamma_tq [-]
 //! ```
 //! An unknown or missing key, a value out of range, or a wrong type is an error naming the
-//! file, the field and the allowed range.
+//! file, the line of the key (or of its section when the key is missing), the field and the
+//! allowed range.
 
 use crate::any_model::AnyModel;
 use crate::elastic::Elastic;
@@ -30,12 +31,22 @@ pub enum ParamFileError {
     },
     #[error("{file}: TOML syntax: {message}")]
     Syntax { file: PathBuf, message: String },
-    #[error("{file}: field `{field}`: {problem}")]
+    #[error("{}: field `{field}`: {problem}", located(file, *line))]
     Field {
         file: PathBuf,
+        /// 1-based line of the key, or of its section when the key is missing.
+        line: Option<usize>,
         field: String,
         problem: String,
     },
+}
+
+/// `file:line`, or `file` alone when the line is unknown.
+fn located(file: &Path, line: Option<usize>) -> String {
+    match line {
+        Some(n) => format!("{}:{n}", file.display()),
+        None => file.display().to_string(),
+    }
 }
 
 /// A loaded parameter file.
@@ -131,15 +142,44 @@ impl Range {
 
 struct Reader<'a> {
     file: &'a Path,
+    text: &'a str,
+    /// The same text with spans, to give each field its line.
+    spans: toml_edit::ImDocument<&'a str>,
 }
 
 impl Reader<'_> {
     fn err(&self, field: impl Into<String>, problem: impl Into<String>) -> ParamFileError {
+        let field = field.into();
         ParamFileError::Field {
             file: self.file.to_path_buf(),
-            field: field.into(),
+            line: self.line_of(&field),
+            field,
             problem: problem.into(),
         }
+    }
+
+    /// Line of a dotted field (`elastic.E`): of its key, else of the deepest table found.
+    fn line_of(&self, field: &str) -> Option<usize> {
+        let mut table = self.spans.as_table();
+        let mut span = None;
+        for part in field.split('.') {
+            if let Some(key) = table.key(part) {
+                span = key.span().or(span);
+            }
+            match table.get(part).and_then(|item| item.as_table()) {
+                Some(inner) => {
+                    span = inner.span().or(span);
+                    table = inner;
+                }
+                None => break,
+            }
+        }
+        span.map(|s| {
+            self.text[..s.start.min(self.text.len())]
+                .matches('\n')
+                .count()
+                + 1
+        })
     }
 
     fn section<'t>(&self, root: &'t Table, name: &str) -> Result<&'t Table, ParamFileError> {
@@ -210,13 +250,15 @@ impl Reader<'_> {
 
 /// Parse a parameter file from its text; `file` names it in errors.
 pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFileError> {
-    let r = Reader { file };
+    let syntax = |message: String| ParamFileError::Syntax {
+        file: file.to_path_buf(),
+        message,
+    };
     let root: Table = text
         .parse()
-        .map_err(|e: toml::de::Error| ParamFileError::Syntax {
-            file: file.to_path_buf(),
-            message: e.to_string(),
-        })?;
+        .map_err(|e: toml::de::Error| syntax(e.to_string()))?;
+    let spans = toml_edit::ImDocument::parse(text).map_err(|e| syntax(e.to_string()))?;
+    let r = Reader { file, text, spans };
     let model_kind = r.string(&root, "model")?.ok_or_else(|| {
         r.err(
             "model",
@@ -413,6 +455,7 @@ pub fn load_elasto_plastic(path: impl AsRef<Path>) -> Result<ElastoPlastic, Para
         AnyModel::ElastoPlastic(m) => Ok(m),
         AnyModel::NeoHooke(_) => Err(ParamFileError::Field {
             file: path.to_path_buf(),
+            line: None,
             field: "model".into(),
             problem: "expected \"j2\" or \"johnson-cook\" here, found a Neo-Hooke model".into(),
         }),

@@ -140,7 +140,19 @@ pub fn solve(
             break;
         }
     }
-    let shift = n_trial * (k * u.exp());
+    // The return cannot pass the elastic state that carries τ_y0: its log-strain deviator
+    // has norm τ_y0/(√6 G) or more, so √(3/2) Δα ≤ ‖ε^tr_dev‖ − τ_y0/(√6 G). The
+    // linearized guess overshoots that bound after a return by tens of yield strains, and
+    // the Newton solve started beyond it failed (42CrMo4 after 25 and 45 yield strains
+    // along and across the loading, the grey cell of the iso-error map).
+    let eps_dev = eps_trial.add_scalar(-eps_trial.mean());
+    let dalpha_max = (eps_dev.norm() - tau_y0 / (6f64.sqrt() * g)) / k;
+    let mut dalpha = u.exp();
+    if dalpha > dalpha_max && dalpha_max > 0.0 {
+        dalpha = dalpha_max;
+        u = dalpha.ln();
+    }
+    let shift = n_trial * (k * dalpha);
     let y0 = SVector::<f64, 4>::new(
         eps_trial[0] - shift[0],
         eps_trial[1] - shift[1],

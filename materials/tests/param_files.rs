@@ -1,5 +1,5 @@
-//! Parameter files: every shipped set loads; bad fields are errors naming file, field
-//! and allowed range.
+//! Parameter files: every shipped set loads; bad fields are errors naming file, line,
+//! field and allowed range.
 
 use materials::param_file::parse_material;
 use materials::{load_material, Model};
@@ -61,6 +61,7 @@ fn bad_fields_are_named_with_the_allowed_range() {
             GOOD.replace("E = 200e9", "E = -200e9"),
             "elastic.E",
             "[1000000000, 1000000000000]",
+            5,
         ),
         // a Johnson-Cook material is a metal: values in the wrong unit are named with the
         // likely mistake (issue 14: E = 224.2 ran and gave σ = 0)
@@ -68,58 +69,73 @@ fn bad_fields_are_named_with_the_allowed_range() {
             GOOD.replace("E = 200e9", "E = 224.2"),
             "elastic.E",
             "GPa or MPa given?",
+            5,
         ),
         (
             GOOD.replace("rho = 7800.0", "rho = 7.8"),
             "elastic.rho",
             "g/cm^3 given?",
+            7,
         ),
         (
             GOOD.replace("A = 800e6", "A = 800"),
             "johnson_cook.A",
             "MPa given?",
+            9,
         ),
         (
             GOOD.replace("B = 500e6", "B = 5e12"),
             "johnson_cook.B",
             "[0, 10000000000]",
+            10,
         ),
         (
             GOOD.replace("nu = 0.3", "nu = 0.5"),
             "elastic.nu",
             "(-1, 0.5)",
+            6,
         ),
         (
             GOOD.replace("theta_m = 1700.0", "theta_m = 200.0"),
             "johnson_cook.theta_m",
             "(293.15, inf)",
+            15,
         ),
         (
             GOOD.replace("gamma_tq = 0.9", "gamma_tq = 1.5"),
             "thermal.gamma_tq",
             "[0, 1]",
+            20,
         ),
         (
             GOOD.replace("C = 0.01", "C = 0.01\nD = 3.0"),
             "johnson_cook.D",
             "unknown key",
+            13,
         ),
-        (GOOD.replace("M = 1.0\n", ""), "johnson_cook.M", "missing"),
+        (
+            GOOD.replace("M = 1.0\n", ""),
+            "johnson_cook.M",
+            "missing",
+            8,
+        ),
         (
             GOOD.replace("rho = 7800.0", "rho = \"heavy\""),
             "elastic.rho",
             "expected a number",
+            7,
         ),
         (
             GOOD.replace("johnson-cook", "drucker-prager"),
             "model",
             "unknown model",
+            3,
         ),
     ];
-    for (text, field, what) in cases {
+    for (text, field, what, line) in cases {
         let e = error_of(&text);
         assert!(
-            e.starts_with("bad.toml: field `") && e.contains(field) && e.contains(what),
+            e.starts_with(&format!("bad.toml:{line}: field `{field}`")) && e.contains(what),
             "got: {e}"
         );
     }

@@ -28,6 +28,8 @@ pub enum Cause {
     GridTooLarge(TooLarge),
     #[error("energy error {error:.4e} J exceeds {limit:.4e} J (the energy-error fraction of the energy supplied): the integration is gaining energy, an instability (reduce time.safety)")]
     EnergyError { error: f64, limit: f64 },
+    #[error("interrupted (Ctrl-C or a termination signal); the output up to here is kept")]
+    Interrupted,
 }
 
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -40,8 +42,8 @@ pub struct SimulationError {
 }
 
 /// What kind of failure a run met: the prediction itself went bad (an optimizer rejects
-/// the trial parameters and goes on), or the model asked for more than the limits allow
-/// (fix the input).
+/// the trial parameters and goes on), the model asked for more than the limits allow
+/// (fix the input), or the run was stopped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FailureKind {
     /// Non-finite values, inverted or failed material updates, energy or speed beyond
@@ -49,12 +51,15 @@ pub enum FailureKind {
     Divergence,
     /// The run or the grid would exceed `materials::limits`.
     Limit,
+    /// The caller stopped the run.
+    Stopped,
 }
 
 impl Cause {
     pub fn kind(&self) -> FailureKind {
         match self {
             Cause::TooManySteps(_) | Cause::GridTooLarge(_) => FailureKind::Limit,
+            Cause::Interrupted => FailureKind::Stopped,
             Cause::NonFinite { .. }
             | Cause::InvertedDeformation { .. }
             | Cause::Material(_)

@@ -3,7 +3,9 @@
 //! failure stops the run; what was written stays on disk and the failure is returned in
 //! the summary as a result. The named results of the last state (module `results`) are
 //! written to `results.csv`, also after a failure. A run that would take more than
-//! `limits::TIME_STEPS` steps fails at step 0 (after the first history row).
+//! `limits::TIME_STEPS` steps fails at step 0 (after the first history row). A run stopped
+//! by its caller (`progress` breaks, e.g. on Ctrl-C) ends like a failure with cause
+//! `Interrupted`: its last state written, its results collected.
 
 use crate::failure::{Cause, SimulationError};
 use crate::observer::{Every, Observer};
@@ -13,6 +15,8 @@ use crate::scene::{Scene, Simulation};
 use crate::solver::{RunError, Solver, TimeStepChange};
 use crate::timestep::TimeStep;
 use materials::limits::TIME_STEPS;
+use std::io;
+use std::ops::ControlFlow;
 use std::path::Path;
 
 #[derive(Debug)]
@@ -27,12 +31,13 @@ pub struct RunSummary {
 }
 
 /// Run `scene` writing into `dir`; `start(time_step)` is called once Δt is chosen (to warn
-/// about a risky one, `TimeStep::risk`), `progress(t, t_end)` after every step.
+/// about a risky one, `TimeStep::risk`), `progress(t, t_end)` after every step (breaking
+/// stops the run).
 pub fn run_scene(
     scene: Scene,
     dir: &Path,
     start: impl FnOnce(&TimeStep),
-    progress: impl FnMut(f64, f64),
+    progress: impl FnMut(f64, f64) -> ControlFlow<()>,
 ) -> std::io::Result<RunSummary> {
     std::fs::create_dir_all(dir)?;
     match scene.simulation {
@@ -64,7 +69,7 @@ fn run<const D: usize>(
     snapshots: usize,
     dir: &Path,
     start: impl FnOnce(&TimeStep),
-    mut progress: impl FnMut(f64, f64),
+    mut progress: impl FnMut(f64, f64) -> ControlFlow<()>,
 ) -> std::io::Result<RunSummary> {
     let time_step = solver.initialize();
     start(&time_step);
@@ -77,9 +82,9 @@ fn run<const D: usize>(
         inner: RestTracker::default(),
     };
     let mut snapshot = SnapshotWriter::new(dir, end, snapshots);
-    let mut report = |s: &Solver<D>| {
-        progress(s.time, end);
-        Ok(())
+    let mut report = |s: &Solver<D>| match progress(s.time, end) {
+        ControlFlow::Continue(()) => Ok(()),
+        ControlFlow::Break(()) => Err(io::Error::from(io::ErrorKind::Interrupted)),
     };
     let mut observers: [&mut dyn Observer<D>; 4] =
         [&mut history, &mut rest, &mut snapshot, &mut report];
@@ -97,6 +102,17 @@ fn run<const D: usize>(
             cause: Cause::TooManySteps(e),
         })),
         Ok(_) => solver.run_until(end, &mut observers),
+    };
+    let result = match result {
+        Err(RunError::Io(e)) if e.kind() == io::ErrorKind::Interrupted => {
+            Err(RunError::Simulation(SimulationError {
+                step: solver.step,
+                time: solver.time,
+                particle: None,
+                cause: Cause::Interrupted,
+            }))
+        }
+        other => other,
     };
     let failure = match result {
         Ok(()) => None,

@@ -1,8 +1,8 @@
-//! `mpw export MATERIAL [--params report.toml] --format abaqus|json --units SYSTEM`: write a
+//! `mpw export MATERIAL [--params report.toml] --format abaqus|lsdyna|json --units SYSTEM`: write a
 //! Johnson-Cook parameter set for another code (`crate::export`): the material file's
 //! values, with a fit report's `final_parameters` applied when `--params` is given.
 
-use crate::export::{abaqus, json, units};
+use crate::export::{abaqus, json, lsdyna, units};
 use crate::fit::report::read_parameters;
 use anyhow::{bail, Result};
 use materials::AnyModel;
@@ -15,12 +15,15 @@ pub struct Args {
     /// A fit report whose final parameters replace the material file's.
     #[arg(long)]
     pub params: Option<PathBuf>,
-    /// Card format: abaqus or json.
+    /// Card format: abaqus, lsdyna (*MAT_JOHNSON_COOK with its *EOS_LINEAR_POLYNOMIAL) or json.
     #[arg(long, default_value = "abaqus")]
     pub format: String,
     /// Unit system: si, mm-s-tonne (N, MPa) or mm-ms-kg (kN, GPa).
     #[arg(long, default_value = "si")]
     pub units: String,
+    /// Material and equation-of-state identifier of an LS-DYNA card.
+    #[arg(long, default_value_t = 1)]
+    pub id: u32,
     /// Material name in the card (default: the material file's stem).
     #[arg(long)]
     pub name: Option<String>,
@@ -58,8 +61,9 @@ pub fn run(args: Args) -> Result<()> {
     let name = args.name.clone().unwrap_or_else(|| stem.to_uppercase());
     let card = match args.format.as_str() {
         "abaqus" => abaqus(&material, &name, &source, &units)?,
+        "lsdyna" => lsdyna(&material, &name, &source, &units, args.id)?,
         "json" => json(&material, &name, &source, &units)?,
-        other => bail!("--format \"{other}\": expected \"abaqus\" or \"json\""),
+        other => bail!("--format \"{other}\": expected \"abaqus\", \"lsdyna\" or \"json\""),
     };
     match &args.out {
         Some(file) => {

@@ -128,8 +128,14 @@ fn summary(exp: &ShpbExperiment, a: &ShpbAnalysis) {
     let q = &a.plateau;
     let dt = a.time_s[1] - a.time_s[0];
     println!("{}  ({})", a.name, exp.data_file.display());
+    let source = match exp.bar.incident_delay_calibrated_s.is_some()
+        || exp.bar.transmitted_delay_calibrated_s.is_some()
+    {
+        true => "as calibrated where stated, else distance / c0",
+        false => "distance / c0",
+    };
     println!(
-        "  bar c0 {:.1} m/s, delays gauge→face {:.2} µs (incident), {:.2} µs (transmitted)",
+        "  bar c0 {:.1} m/s, delays gauge→face {:.2} µs (incident), {:.2} µs (transmitted), {source}",
         exp.bar.wave_speed_m_per_s(),
         p.delay_incident_s * 1e6,
         p.delay_transmitted_s * 1e6

@@ -1,12 +1,16 @@
 //! `mpw simulate SCENE.toml`: run an MPM scene with a progress bar; write the time history
 //! (CSV), particle snapshots (VTK), the named results (`results.csv`, also printed) and an
 //! energy chart (PNG) into the output directory.
-//! A failed run is reported with its step, time, particle and cause; its output stays.
+//! A failed run is reported with its step, time, particle and cause; its output stays. A
+//! run stopped with Ctrl-C (or SIGTERM) writes its last state, results and chart too.
 
 use crate::chart::{LineChart, Series};
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
+use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -59,9 +63,14 @@ pub fn run(args: Args) -> Result<()> {
             bar.suspend(|| eprintln!("warning: {risk}"));
         }
     };
+    let stop = interrupt_flag()?;
     let summary = mpm_core::run::run_scene(scene, &out, warn, |t, end| {
         bar.set_position((1000.0 * t / end) as u64);
         bar.set_message(format!("{t:.3e} s"));
+        match stop.load(Ordering::Relaxed) {
+            true => ControlFlow::Break(()),
+            false => ControlFlow::Continue(()),
+        }
     })
     .with_context(|| format!("writing output to {}", out.display()))?;
     bar.finish();
@@ -85,6 +94,16 @@ pub fn run(args: Args) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// A flag that Ctrl-C (or SIGTERM, SIGHUP) sets, so that a stopped run still writes its
+/// last state, results and chart.
+fn interrupt_flag() -> Result<Arc<AtomicBool>> {
+    let flag = Arc::new(AtomicBool::new(false));
+    let set = flag.clone();
+    ctrlc::set_handler(move || set.store(true, Ordering::Relaxed))
+        .context("installing the Ctrl-C handler")?;
+    Ok(flag)
 }
 
 /// Chart kinetic, internal and total energy from a history file.

@@ -94,6 +94,8 @@ fn iso_error_charts(materials: &Path, out: &Path) -> Result<()> {
             y: map.b.clone(),
             value: map.error.clone(),
             log10_range: (-4.0, 0.0),
+            value_label: "relative stress error [-]".into(),
+            missing_label: "the one-step update failed".into(),
         }
         .write_png(&out.join(format!("iso_error_{name}.png")))?;
     }

@@ -6,6 +6,7 @@
 //! name = "945 steel, test 01"          # optional, default: the TOML's file stem
 //! data = "path/relative/to/this.csv"
 //! temperature = "293.15 K"
+//! polarity = "compression-negative"   # default; "compression-positive" flips both gauges
 //! [columns]
 //! time = { name = "time_s", unit = "s" }
 //! incident = { name = "incident_microstrain", unit = "microstrain" }
@@ -18,11 +19,17 @@
 //! diameter = "20 mm"
 //! incident_gauge_to_specimen = "1020 mm"
 //! transmitted_gauge_to_specimen = "770 mm"
+//! # calibrated gauge-to-face travel times, when the laboratory measured them; default
+//! # distance / c0 (c0 stays the impedance wave speed)
+//! # incident_gauge_delay = "196.6 us"
+//! # transmitted_gauge_delay = "148.4 us"
 //! [specimen]
 //! diameter = "8 mm"
 //! length = "4 mm"
 //! ```
-//! Strains are stored as recorded (compression negative), in strain [-].
+//! Strains are stored compression negative, in strain [-]: a record declared
+//! compression-positive is flipped on loading. Whether the pulses agree with the declared
+//! polarity is checked by the processing (`shpb::pulses`).
 
 use super::error::ExperimentError;
 use super::sidecar::{ColumnSpec, Sidecar};
@@ -42,6 +49,7 @@ struct ShpbFile {
     name: Option<String>,
     data: Spanned<String>,
     temperature: Spanned<String>,
+    polarity: Option<Spanned<String>>,
     columns: ShpbColumns,
     bar: BarSpec,
     specimen: SpecimenSpec,
@@ -76,6 +84,8 @@ struct BarSpec {
     diameter: Spanned<String>,
     incident_gauge_to_specimen: Spanned<String>,
     transmitted_gauge_to_specimen: Spanned<String>,
+    incident_gauge_delay: Option<Spanned<String>>,
+    transmitted_gauge_delay: Option<Spanned<String>>,
 }
 
 #[derive(Deserialize)]
@@ -98,6 +108,10 @@ pub struct Bar {
     pub incident_gauge_to_specimen_m: f64,
     /// Distance from the transmitted-bar gauge to the specimen face [m].
     pub transmitted_gauge_to_specimen_m: f64,
+    /// Calibrated travel times from the incident and transmitted gauges to the specimen
+    /// faces [s], when the laboratory measured them (`None`: distance over c0).
+    pub incident_delay_calibrated_s: Option<f64>,
+    pub transmitted_delay_calibrated_s: Option<f64>,
 }
 
 impl Bar {
@@ -109,6 +123,19 @@ impl Bar {
     /// Cross-section A_b = π d²/4 [m²].
     pub fn area_m2(&self) -> f64 {
         PI * self.diameter_m * self.diameter_m / 4.0
+    }
+
+    /// Travel time from the incident gauge to the specimen face [s]: calibrated, or d_i/c0.
+    pub fn incident_delay_s(&self) -> f64 {
+        self.incident_delay_calibrated_s
+            .unwrap_or(self.incident_gauge_to_specimen_m / self.wave_speed_m_per_s())
+    }
+
+    /// Travel time from the specimen face to the transmitted gauge [s]: calibrated, or
+    /// d_t/c0.
+    pub fn transmitted_delay_s(&self) -> f64 {
+        self.transmitted_delay_calibrated_s
+            .unwrap_or(self.transmitted_gauge_to_specimen_m / self.wave_speed_m_per_s())
     }
 }
 
@@ -128,7 +155,7 @@ impl Specimen {
     }
 }
 
-/// An SHPB record in SI units, strains as recorded (compression negative).
+/// An SHPB record in SI units, strains compression negative.
 #[derive(Debug, Clone)]
 pub struct ShpbExperiment {
     pub name: String,
@@ -187,6 +214,27 @@ impl ShpbExperiment {
                 &b.transmitted_gauge_to_specimen,
                 Dimension::Length,
             )?,
+            incident_delay_calibrated_s: b
+                .incident_gauge_delay
+                .as_ref()
+                .map(|d| sidecar.positive("bar.incident_gauge_delay", d, Dimension::Time))
+                .transpose()?,
+            transmitted_delay_calibrated_s: b
+                .transmitted_gauge_delay
+                .as_ref()
+                .map(|d| sidecar.positive("bar.transmitted_gauge_delay", d, Dimension::Time))
+                .transpose()?,
+        };
+        let sign = match spec.polarity.as_ref().map(|p| (p.get_ref().as_str(), p.span())) {
+            None | Some(("compression-negative", _)) => 1.0,
+            Some(("compression-positive", _)) => -1.0,
+            Some((other, span)) => {
+                return Err(sidecar.invalid(
+                    "polarity",
+                    span,
+                    format!("\"{other}\": expected \"compression-negative\" (the default) or \"compression-positive\""),
+                ))
+            }
         };
         let specimen = Specimen {
             diameter_m: sidecar.positive(
@@ -205,13 +253,19 @@ impl ShpbExperiment {
         let table = CsvTable::read_rows(&data_file, 2)?;
         let time_s = sidecar.column(&table, "columns.time", &spec.columns.time, Dimension::Time)?;
         sidecar.check_time_increases(&table, &spec.columns.time, &time_s)?;
-        let incident = gauge_strain(&sidecar, &table, "columns.incident", &spec.columns.incident)?;
-        let transmitted = gauge_strain(
+        let flip = |v: Vec<f64>| -> Vec<f64> { v.into_iter().map(|x| sign * x).collect() };
+        let incident = flip(gauge_strain(
+            &sidecar,
+            &table,
+            "columns.incident",
+            &spec.columns.incident,
+        )?);
+        let transmitted = flip(gauge_strain(
             &sidecar,
             &table,
             "columns.transmitted",
             &spec.columns.transmitted,
-        )?;
+        )?);
         let name = spec.name.unwrap_or_else(|| {
             toml_file
                 .file_stem()

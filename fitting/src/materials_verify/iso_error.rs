@@ -159,3 +159,40 @@ pub fn cases(name: &str, map: &IsoErrorMap, rate_independent: bool) -> Vec<CaseR
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use materials::plasticity::ReturnMap;
+    use std::path::Path;
+
+    /// Every one-step update of the maps converges, up to 100 yield strains along and
+    /// across the loading (the Johnson-Cook map had a failed cell at 25 and 45 until the
+    /// return's first guess was bounded), and the fast return agrees there with the
+    /// reference return to 1e-9.
+    #[test]
+    fn every_cell_of_the_maps_converges() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/materials");
+        let jc = materials::load_elasto_plastic(dir.join("42crmo4_qt660.toml")).unwrap();
+        let j2 = crate::materials_verify::j2_voce(&dir).unwrap();
+        let multiples: Vec<f64> = (0..=20).map(|k| 5.0 * k as f64).collect();
+        for m in [jc, j2] {
+            let map = run(&m, &multiples);
+            let failed = map.error.iter().flatten().filter(|e| e.is_none()).count();
+            assert_eq!(failed, 0);
+        }
+        let (f0, old) = at_yield(&jc);
+        let (n1, n2) = directions();
+        let d_eps = (n1 * 25.0 + n2 * 45.0) * (jc.flow.initial_yield() / jc.elastic.e);
+        let fast = stepped(&jc, &f0, &old, &d_eps, 1).unwrap();
+        let reference = ElastoPlastic {
+            return_map: ReturnMap::Reference,
+            ..jc
+        };
+        let slow = stepped(&reference, &f0, &old, &d_eps, 1).unwrap();
+        assert!(
+            (fast - slow).norm() <= 1e-9 * slow.norm(),
+            "{fast} vs {slow}"
+        );
+    }
+}

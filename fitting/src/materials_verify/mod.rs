@@ -34,6 +34,7 @@ pub fn verify_cases(dir: &Path, full: bool) -> Result<Vec<CaseResult>, ParamFile
         AnyModel::ElastoPlastic(_) => {
             return Err(ParamFileError::Field {
                 file: dir.join("aisi_52100.toml"),
+                line: None,
                 field: "model".into(),
                 problem: "expected \"neo-hooke\" for the hyperelastic rows".into(),
             })

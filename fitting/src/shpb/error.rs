@@ -10,6 +10,20 @@ pub enum ShpbError {
         amplitude: f64,
         noise: f64,
     },
+    #[error("{name}: the first pulse on the incident gauge is tensile (+{peak:.3e} strain, first beyond half of it at t = {time_s:.6e} s; largest compressive excursion {compressive_peak:.3e}): an incident pulse is compressive, so this record stores compression as positive (state polarity = \"compression-positive\" in its TOML) or its incident gauge is reversed")]
+    TensileIncidentPulse {
+        name: String,
+        time_s: f64,
+        peak: f64,
+        compressive_peak: f64,
+    },
+    #[error("{name}: the transmitted pulse is tensile (+{peak:.3e} strain against {compressive_peak:.3e} compressive, in {:.6e} .. {:.6e} s at its gauge) while the incident pulse is compressive: the transmitted gauge's sign is reversed (wiring, or a negative gain)", window_s.0, window_s.1)]
+    TensileTransmittedPulse {
+        name: String,
+        window_s: (f64, f64),
+        peak: f64,
+        compressive_peak: f64,
+    },
     #[error("{name}: the incident pulse starts at sample {start}; at least {needed} quiet samples are needed before it to measure the baseline")]
     NoPreTrigger {
         name: String,

@@ -1,7 +1,10 @@
 //! Baseline removal and pulse detection on the raw gauge records.
 //!
-//! The incident pulse is the first compressive excursion of the incident gauge beyond half
-//! of the record's largest one (on a 1 µs moving average). Its start and end are where
+//! The incident pulse is the first excursion of the incident gauge beyond half of the
+//! record's largest one (on a 1 µs moving average); it must be compressive, and so must
+//! the transmitted pulse: a record whose pulses contradict its declared polarity is an
+//! error that says what was seen, never processed with the reflected pulse taken for the
+//! incident one. Its start and end are where
 //! it leaves and re-enters the band |ε − b| < max(5 s_n, 0.03 a) around the baseline b
 //! (s_n: pre-trigger noise, a: pulse amplitude). The baseline of each gauge is the mean of
 //! its samples before the incident pulse (less a margin); the noise is their standard
@@ -9,7 +12,8 @@
 //!
 //! The analysis window at the specimen faces is the incident window (widened on both
 //! sides by 10 % of the pulse duration) delayed by d_i/c0; the reflected and transmitted
-//! pulses are read through the same window, delayed by −d_i/c0 and −d_t/c0. The measured
+//! pulses are read through the same window, delayed by −d_i/c0 and −d_t/c0 (or by the
+//! bar's calibrated delays, `Bar::incident_delay_s`). The measured
 //! half-amplitude arrival of each of them is compared with the arrival that the gauge
 //! distances and c0 predict, as a diagnostic of the time shift.
 
@@ -57,9 +61,8 @@ pub fn detect_pulses(exp: &ShpbExperiment) -> Result<PulseWindows, ShpbError> {
     let n = t.len();
     let dt = (t[n - 1] - t[0]) / (n - 1) as f64;
     let width = ((SMOOTHING_S / dt).round() as usize).max(1);
-    let c0 = exp.bar.wave_speed_m_per_s();
-    let delay_incident_s = exp.bar.incident_gauge_to_specimen_m / c0;
-    let delay_transmitted_s = exp.bar.transmitted_gauge_to_specimen_m / c0;
+    let delay_incident_s = exp.bar.incident_delay_s();
+    let delay_transmitted_s = exp.bar.transmitted_delay_s();
 
     // First estimate of baseline and noise from the first 5 % of the record.
     let head = &exp.incident[..(n / 20).max(MIN_PRE_TRIGGER).min(n)];
@@ -69,6 +72,18 @@ pub fn detect_pulses(exp: &ShpbExperiment) -> Result<PulseWindows, ShpbError> {
         .map(|v| v - b0)
         .collect();
     let global = smooth.iter().cloned().fold(0.0, f64::min);
+    let tensile = smooth.iter().cloned().fold(0.0, f64::max);
+    let largest = tensile.max(-global);
+    if let Some(first) = smooth.iter().position(|v| v.abs() > 0.5 * largest) {
+        if smooth[first] > 0.0 && tensile > 10.0 * noise0 {
+            return Err(ShpbError::TensileIncidentPulse {
+                name: name(),
+                time_s: t[first],
+                peak: tensile,
+                compressive_peak: -global,
+            });
+        }
+    }
     if -global < 10.0 * noise0 {
         return Err(ShpbError::NoIncidentPulse {
             name: name(),
@@ -129,6 +144,16 @@ pub fn detect_pulses(exp: &ShpbExperiment) -> Result<PulseWindows, ShpbError> {
         }
     }
 
+    check_transmitted_sign(
+        exp,
+        width,
+        (
+            gauge.0 + delay_incident_s + delay_transmitted_s,
+            gauge.1 + delay_incident_s + delay_transmitted_s,
+        ),
+        baseline_transmitted,
+        noise_transmitted,
+    )?;
     let incident_arrival_s = crossing(t, &smooth, half_start, 0.5 * global);
     let arrival = |values: &[f64], baseline: f64, shift: f64, sign: f64| {
         let s: Vec<f64> = moving_average(values, width)
@@ -162,6 +187,33 @@ pub fn detect_pulses(exp: &ShpbExperiment) -> Result<PulseWindows, ShpbError> {
         reflected_arrival_offset_s,
         transmitted_arrival_offset_s,
     })
+}
+
+/// The transmitted pulse, in its `window` at the gauge [s], must be compressive: a larger
+/// tensile than compressive excursion, beyond 10 times the noise, is a reversed gauge.
+fn check_transmitted_sign(
+    exp: &ShpbExperiment,
+    width: usize,
+    window: (f64, f64),
+    baseline: f64,
+    noise: f64,
+) -> Result<(), ShpbError> {
+    let t = &exp.time_s;
+    let lo = t.partition_point(|&x| x < window.0);
+    let hi = t.partition_point(|&x| x <= window.1);
+    let smooth = moving_average(&exp.transmitted, width);
+    let (low, high) = smooth[lo..hi].iter().fold((0.0_f64, 0.0_f64), |(a, b), v| {
+        (a.min(v - baseline), b.max(v - baseline))
+    });
+    if high > -low && high > 10.0 * noise {
+        return Err(ShpbError::TensileTransmittedPulse {
+            name: exp.name.clone(),
+            window_s: window,
+            peak: high,
+            compressive_peak: -low,
+        });
+    }
+    Ok(())
 }
 
 /// Time at which `s` crosses `level` between samples `i − 1` and `i` (linear).

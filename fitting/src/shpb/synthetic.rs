@@ -5,7 +5,8 @@
 //! ε_t = ε_i + ε_r with ε_t = A_s σ/(E_b A_b), and the engineering strain follows
 //! dε/dt = c0 (ε_i − ε_r − ε_t)/L_s = 2 c0 (ε_i − ε_t)/L_s (integrated by RK4 at a
 //! quarter of the sampling interval). A trapezoidal incident pulse ε_i(t) drives it.
-//! The face strains are delayed to the gauges (d_i/c0, d_t/c0), turned to the recorded
+//! The face strains are delayed to the gauges (d_i/c0, d_t/c0, or the bar's calibrated
+//! delays), turned to the recorded
 //! sign (compression negative), offset by a baseline and given uniform noise from a
 //! seeded generator.
 
@@ -115,6 +116,8 @@ impl SyntheticSetup {
                 diameter_m: 0.020,
                 incident_gauge_to_specimen_m: 1.020,
                 transmitted_gauge_to_specimen_m: 0.770,
+                incident_delay_calibrated_s: None,
+                transmitted_delay_calibrated_s: None,
             },
             specimen: Specimen {
                 diameter_m: 0.008,
@@ -200,8 +203,8 @@ impl SyntheticShpb {
         };
 
         // Gauge records, compression negative.
-        let di = bar.incident_gauge_to_specimen_m / c0;
-        let dtr = bar.transmitted_gauge_to_specimen_m / c0;
+        let di = bar.incident_delay_s();
+        let dtr = bar.transmitted_delay_s();
         let load_start_s = setup.pre_trigger_s + di;
         let end = load_start_s + last + di.max(dtr) + 20e-6;
         let samples = (end / setup.sampling_s).ceil() as usize;

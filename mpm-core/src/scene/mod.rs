@@ -280,7 +280,13 @@ mod tests {
         let _ = std::fs::remove_dir_all(&dir);
         let mut scene = load(&scenes().join("single_particle.toml")).unwrap();
         scene.end = 1.0;
-        let summary = crate::run::run_scene(scene, &dir, |_| {}, |_, _| {}).unwrap();
+        let summary = crate::run::run_scene(
+            scene,
+            &dir,
+            |_| {},
+            |_, _| std::ops::ControlFlow::Continue(()),
+        )
+        .unwrap();
         assert!(summary.failure.is_none());
         // the run ends at the step nearest to t_end = 1 s, and the history has a header,
         // the initial state and one row per step (history_every = 1)
@@ -297,6 +303,51 @@ mod tests {
         let snapshot = std::fs::read(dir.join("snapshot_00010.vtk")).unwrap();
         assert!(snapshot.starts_with(b"# vtk DataFile"));
     }
+
+    /// A run its caller stops (Ctrl-C in `mpw simulate`) ends at that step with cause
+    /// `Interrupted`, its last state in the history and its results written.
+    #[test]
+    fn a_stopped_run_keeps_its_last_state_and_results() {
+        let dir = std::env::temp_dir().join(format!("mpw_stop_test-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let scene = load(&scenes().join("single_particle.toml")).unwrap();
+        let mut calls = 0;
+        let summary = crate::run::run_scene(
+            scene,
+            &dir,
+            |_| {},
+            |_, _| {
+                calls += 1;
+                match calls > 7 {
+                    true => std::ops::ControlFlow::Break(()),
+                    false => std::ops::ControlFlow::Continue(()),
+                }
+            },
+        )
+        .unwrap();
+        let failure = summary.failure.unwrap();
+        assert_eq!(failure.cause, crate::Cause::Interrupted);
+        assert_eq!(failure.cause.kind(), crate::failure::FailureKind::Stopped);
+        // the initial state is observed once, then steps 1..=7 pass and step 8 stops
+        assert_eq!(summary.steps, 8);
+        let history = std::fs::read_to_string(dir.join("history.csv")).unwrap();
+        let last: f64 = history
+            .lines()
+            .last()
+            .unwrap()
+            .split(',')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!(
+            (last - failure.time).abs() <= 1e-12 * failure.time,
+            "{last} vs {}",
+            failure.time
+        );
+        assert!(dir.join("results.csv").exists());
+    }
+
     /// Sizes derived from a scene are bounded before anything of that size is allocated
     /// (issue 16): a spacing of 1 nm on the colliding disks (4e17 points) is an error that
     /// names the body; an end time of 1e30 s stops at step 0 naming `time.end`; a point
@@ -316,7 +367,13 @@ mod tests {
             "{e}"
         );
         std::fs::write(&path, text.replace("end = 3.5", "end = 1e30")).unwrap();
-        let summary = crate::run::run_scene(load(&path).unwrap(), &dir, |_| {}, |_, _| {}).unwrap();
+        let summary = crate::run::run_scene(
+            load(&path).unwrap(),
+            &dir,
+            |_| {},
+            |_, _| std::ops::ControlFlow::Continue(()),
+        )
+        .unwrap();
         let failure = summary.failure.unwrap();
         assert_eq!(summary.steps, 0);
         assert!(
