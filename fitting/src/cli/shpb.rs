@@ -128,6 +128,9 @@ fn summary(exp: &ShpbExperiment, a: &ShpbAnalysis) {
     let q = &a.plateau;
     let dt = a.time_s[1] - a.time_s[0];
     println!("{}  ({})", a.name, exp.data_file.display());
+    for note in &exp.notes {
+        println!("  note: {note}");
+    }
     let source = match exp.bar.incident_delay_calibrated_s.is_some()
         || exp.bar.transmitted_delay_calibrated_s.is_some()
     {

@@ -7,6 +7,7 @@
 
 mod error;
 pub mod header;
+pub mod lanl_raw;
 mod pattern;
 mod shpb;
 mod sidecar;

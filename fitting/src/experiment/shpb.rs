@@ -27,11 +27,21 @@
 //! diameter = "8 mm"
 //! length = "4 mm"
 //! ```
+//! A record in the LANL standard raw format (`lanl_raw`) needs only a short TOML; the
+//! file states bars, gauges, gains, specimen and temperature, but not the bridge:
+//! ```toml
+//! kind = "shpb"
+//! format = "lanl-raw"
+//! data = "20061201_1148HE_CuOFE_273K.raw"
+//! polarity = "compression-positive"
+//! active_arms = 2
+//! ```
 //! Strains are stored compression negative, in strain [-]: a record declared
 //! compression-positive is flipped on loading. Whether the pulses agree with the declared
 //! polarity is checked by the processing (`shpb::pulses`).
 
 use super::error::ExperimentError;
+use super::lanl_raw::RawRecord;
 use super::sidecar::{ColumnSpec, Sidecar};
 use super::table::CsvTable;
 use super::units::Dimension;
@@ -53,6 +63,27 @@ struct ShpbFile {
     columns: ShpbColumns,
     bar: BarSpec,
     specimen: SpecimenSpec,
+}
+
+/// The `format` key alone, read before the rest of the file.
+#[derive(Deserialize)]
+struct FormatOnly {
+    format: Option<Spanned<String>>,
+}
+
+/// The TOML of a LANL standard raw record.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LanlFile {
+    /// Checked before this type is parsed, as `format`.
+    #[allow(dead_code)]
+    kind: Spanned<String>,
+    #[allow(dead_code)]
+    format: Spanned<String>,
+    name: Option<String>,
+    data: Spanned<String>,
+    polarity: Option<Spanned<String>>,
+    active_arms: Spanned<u32>,
 }
 
 #[derive(Deserialize)]
@@ -171,12 +202,31 @@ pub struct ShpbExperiment {
     pub incident: Vec<f64>,
     /// Transmitted-bar gauge strain [-].
     pub transmitted: Vec<f64>,
+    /// What the reader noticed and decided (a density in g/cm³ under a kg/m³ label,
+    /// gains that disagree), for the report.
+    pub notes: Vec<String>,
 }
 
 impl ShpbExperiment {
     /// Read an SHPB experiment TOML and the CSV it names.
     pub fn load(toml_file: &Path) -> Result<ShpbExperiment, ExperimentError> {
         let sidecar = Sidecar::read(toml_file)?;
+        sidecar.parse_kind::<super::sidecar::KindOnly>("shpb")?;
+        match sidecar.parse::<FormatOnly>()?.format {
+            None => {}
+            Some(f) if f.get_ref() == "csv" => {}
+            Some(f) if f.get_ref() == "lanl-raw" => return load_lanl(&sidecar, toml_file),
+            Some(f) => {
+                return Err(sidecar.invalid(
+                    "format",
+                    f.span(),
+                    format!(
+                        "\"{}\": expected \"csv\" (the default) or \"lanl-raw\"",
+                        f.get_ref()
+                    ),
+                ))
+            }
+        }
         let spec: ShpbFile = sidecar.parse_kind("shpb")?;
         let temperature_k =
             sidecar.positive("temperature", &spec.temperature, Dimension::Temperature)?;
@@ -225,17 +275,6 @@ impl ShpbExperiment {
                 .map(|d| sidecar.positive("bar.transmitted_gauge_delay", d, Dimension::Time))
                 .transpose()?,
         };
-        let sign = match spec.polarity.as_ref().map(|p| (p.get_ref().as_str(), p.span())) {
-            None | Some(("compression-negative", _)) => 1.0,
-            Some(("compression-positive", _)) => -1.0,
-            Some((other, span)) => {
-                return Err(sidecar.invalid(
-                    "polarity",
-                    span,
-                    format!("\"{other}\": expected \"compression-negative\" (the default) or \"compression-positive\""),
-                ))
-            }
-        };
         let specimen = Specimen {
             diameter_m: sidecar.positive(
                 "specimen.diameter",
@@ -248,7 +287,7 @@ impl ShpbExperiment {
                 Dimension::Length,
             )?,
         };
-
+        let sign = polarity_sign(&sidecar, spec.polarity.as_ref())?;
         let data_file = sidecar.relative_path(spec.data.get_ref());
         let table = CsvTable::read_rows(&data_file, 2)?;
         let time_s = sidecar.column(&table, "columns.time", &spec.columns.time, Dimension::Time)?;
@@ -266,13 +305,8 @@ impl ShpbExperiment {
             "columns.transmitted",
             &spec.columns.transmitted,
         )?);
-        let name = spec.name.unwrap_or_else(|| {
-            toml_file
-                .file_stem()
-                .map_or_else(|| "shpb".into(), |s| s.to_string_lossy().into_owned())
-        });
         Ok(ShpbExperiment {
-            name,
+            name: spec.name.unwrap_or_else(|| stem(toml_file)),
             data_file,
             bar,
             specimen,
@@ -280,8 +314,67 @@ impl ShpbExperiment {
             time_s,
             incident,
             transmitted,
+            notes: Vec::new(),
         })
     }
+}
+
+fn stem(toml_file: &Path) -> String {
+    toml_file
+        .file_stem()
+        .map_or_else(|| "shpb".into(), |s| s.to_string_lossy().into_owned())
+}
+
+/// +1 for a record stored compression negative (the default), −1 for one declared
+/// `polarity = "compression-positive"`.
+fn polarity_sign(
+    sidecar: &Sidecar,
+    polarity: Option<&Spanned<String>>,
+) -> Result<f64, ExperimentError> {
+    match polarity.map(|p| (p.get_ref().as_str(), p.span())) {
+        None | Some(("compression-negative", _)) => Ok(1.0),
+        Some(("compression-positive", _)) => Ok(-1.0),
+        Some((other, span)) => Err(sidecar.invalid(
+            "polarity",
+            span,
+            format!("\"{other}\": expected \"compression-negative\" (the default) or \"compression-positive\""),
+        )),
+    }
+}
+
+/// A LANL standard raw record (`lanl_raw`) with its TOML: bars, gauges, gains, specimen
+/// and temperature from the file (`RawRecord::bar`, `RawRecord::gauge_strain`), the
+/// bridge and polarity from the TOML.
+fn load_lanl(sidecar: &Sidecar, toml_file: &Path) -> Result<ShpbExperiment, ExperimentError> {
+    let spec: LanlFile = sidecar.parse()?;
+    let sign = polarity_sign(sidecar, spec.polarity.as_ref())?;
+    let arms = *spec.active_arms.get_ref();
+    if ![1, 2, 4].contains(&arms) {
+        return Err(sidecar.invalid("active_arms", spec.active_arms.span(), "expected 1, 2 or 4"));
+    }
+    let data_file = sidecar.relative_path(spec.data.get_ref());
+    let raw = RawRecord::read(&data_file)?;
+    raw.check_compression()?;
+    let mut notes = Vec::new();
+    let bar = raw.bar(&mut notes)?;
+    let scale = sign * 4.0 / f64::from(arms);
+    let incident =
+        raw.gauge_strain("Incident", "Incident/Reflected Bar Gain", scale, &mut notes)?;
+    let transmitted = raw.gauge_strain("Transmitted", "Transmitted Bar Gain", scale, &mut notes)?;
+    Ok(ShpbExperiment {
+        name: spec.name.unwrap_or_else(|| stem(toml_file)),
+        bar,
+        specimen: Specimen {
+            diameter_m: raw.number("Initial Sample Diameter", Some(Dimension::Length))?,
+            length_m: raw.number("Initial Sample Length", Some(Dimension::Length))?,
+        },
+        temperature_k: raw.number("Test Temperature", Some(Dimension::Temperature))?,
+        time_s: raw.time_s(),
+        incident,
+        transmitted,
+        notes,
+        data_file,
+    })
 }
 
 /// Gauge strain [-] from a strain column, or from a bridge voltage U:
