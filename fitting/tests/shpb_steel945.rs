@@ -68,3 +68,69 @@ fn paired_tests_agree_on_strain_rate() {
         );
     }
 }
+
+/// `mpw shpb FOLDER` on the six records: one table row each, and test 05 against the
+/// hand-processed workbook of the data's source tool (plateau rate 1876 1/s, final strain
+/// 0.138; 2 % each, its plateau bounds picked by hand, ours by rule). A folder with a
+/// record that cannot be processed lists its error and exits 1.
+#[test]
+fn a_folder_of_records_gives_one_table() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    if VerifyData::repository().steel_945().is_none() {
+        common::skip("../shared/data/shpb/steel_945");
+        return;
+    }
+    let out = std::env::temp_dir().join(format!("mpw_shpb_folder-{}", std::process::id()));
+    let run = |folder: &std::path::Path| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_mpw"))
+            .args([
+                "shpb",
+                folder.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+            ])
+            .output()
+            .unwrap()
+    };
+    let done = run(&root.join("data/experiments/shpb_steel_945"));
+    assert!(
+        done.status.success(),
+        "{}",
+        String::from_utf8_lossy(&done.stderr)
+    );
+    let table = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = table
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(rows.len(), 6, "{table}");
+    let test_05 = rows.iter().find(|r| r[0] == "test_05").unwrap();
+    let number = |k: usize| test_05[k].parse::<f64>().unwrap();
+    assert!(
+        (number(1) / 1876.0 - 1.0).abs() < 0.02,
+        "rate {}",
+        number(1)
+    );
+    assert!(
+        (number(2) / 0.138 - 1.0).abs() < 0.02,
+        "final strain {}",
+        number(2)
+    );
+    // one broken record in a copy of the folder
+    let broken = out.join("broken");
+    std::fs::create_dir_all(&broken).unwrap();
+    let good = std::fs::read_to_string(root.join("data/experiments/shpb_steel_945/test_01.toml"))
+        .unwrap()
+        .replace(
+            "../../../../shared",
+            &root.join("../shared").display().to_string(),
+        );
+    std::fs::write(broken.join("a.toml"), &good).unwrap();
+    std::fs::write(broken.join("b.toml"), good.replace("20 mm", "20 parsecs")).unwrap();
+    let failed = run(&broken);
+    assert_eq!(failed.status.code(), Some(1));
+    let table = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    assert!(table.lines().nth(1).unwrap().starts_with("a,"), "{table}");
+    assert!(table.lines().nth(2).unwrap().contains("parsecs"), "{table}");
+}

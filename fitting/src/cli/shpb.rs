@@ -1,6 +1,10 @@
-//! `mpw shpb EXPERIMENT.toml [--out DIR]`: process an SHPB record; write the face
+//! `mpw shpb EXPERIMENT.toml|FOLDER [--out DIR]`: process an SHPB record; write the face
 //! histories as CSV (`shpb.csv`, compression positive, units in the column names), charts
-//! of the pulses, forces, strain rate and stress-strain curve, and print a summary.
+//! of the pulses, forces, strain rate and stress-strain curve, and print a summary. A
+//! folder processes every SHPB TOML in it (sorted by name), each into its own subfolder,
+//! and writes one table of all (`summary.csv`, also printed): plateau rate, final strain,
+//! true flow stress at fixed true strains, median equilibrium ratio over the plateau. A
+//! record that cannot be processed is listed with its error; the run then exits 1.
 
 use crate::chart::{LineChart, Series};
 use crate::experiment::ShpbExperiment;
@@ -10,26 +14,164 @@ use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Experiment TOML of kind "shpb".
+    /// Experiment TOML of kind "shpb", or a folder of them.
     pub experiment: PathBuf,
-    /// Output folder (default: out/shpb/<experiment file stem>).
+    /// Output folder (default: out/shpb/<experiment file or folder stem>).
     #[arg(long)]
     pub out: Option<PathBuf>,
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let exp = ShpbExperiment::load(&args.experiment)?;
-    let a = analyze(&exp)?;
     let out = args.out.unwrap_or_else(|| {
         let stem = args.experiment.file_stem().unwrap_or_default();
         Path::new("out/shpb").join(stem)
     });
-    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
-    a.write_csv(&out.join("shpb.csv"))?;
-    charts(&a, &out)?;
+    if args.experiment.is_dir() {
+        return run_folder(&args.experiment, &out);
+    }
+    let (exp, a) = process(&args.experiment, &out)?;
     summary(&exp, &a);
     println!("wrote {}/shpb.csv and charts", out.display());
     Ok(())
+}
+
+/// Load, analyze and write one record into `out`.
+fn process(toml_file: &Path, out: &Path) -> Result<(ShpbExperiment, ShpbAnalysis)> {
+    let exp = ShpbExperiment::load(toml_file)?;
+    let a = analyze(&exp)?;
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    a.write_csv(&out.join("shpb.csv"))?;
+    charts(&a, out)?;
+    Ok((exp, a))
+}
+
+/// True strains at which the folder table gives the true flow stress.
+const TABLE_STRAINS: [f64; 3] = [0.05, 0.10, 0.15];
+
+/// Every SHPB TOML of `folder`, each into `out/<stem>`, and the table of all.
+fn run_folder(folder: &Path, out: &Path) -> Result<()> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(folder)
+        .with_context(|| format!("cannot read {}", folder.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    if files.is_empty() {
+        anyhow::bail!("{}: no experiment TOML in this folder", folder.display());
+    }
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let strains: Vec<String> = TABLE_STRAINS
+        .iter()
+        .map(|e| format!("true_stress_at_{e}_mpa"))
+        .collect();
+    let mut csv = format!(
+        "record,plateau_rate_per_s,final_strain,{},median_r,error\n",
+        strains.join(",")
+    );
+    let head: String = TABLE_STRAINS
+        .iter()
+        .map(|e| format!(" {:>12}", format!("σ({e:.2}) MPa")))
+        .collect();
+    println!(
+        "{:<12} {:>10} {:>8}{head} {:>9}",
+        "record", "rate 1/s", "ε final", "median R"
+    );
+    let mut failed = 0;
+    for file in &files {
+        let stem = file
+            .file_stem()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .into_owned();
+        match process(file, &out.join(&stem)) {
+            Ok((_, a)) => {
+                let row = TableRow::of(&a);
+                let cells: String = row
+                    .stress_mpa
+                    .iter()
+                    .map(|s| format!(" {:>12}", fixed(*s, 1)))
+                    .collect();
+                println!(
+                    "{stem:<12} {:>10.1} {:>8.4}{cells} {:>9.3}",
+                    row.rate, row.final_strain, row.median_r
+                );
+                let stresses: Vec<String> = row
+                    .stress_mpa
+                    .iter()
+                    .map(|s| s.map_or(String::new(), |v| format!("{v}")))
+                    .collect();
+                csv += &format!(
+                    "{stem},{},{},{},{},\n",
+                    row.rate,
+                    row.final_strain,
+                    stresses.join(","),
+                    row.median_r
+                );
+            }
+            Err(e) => {
+                failed += 1;
+                println!("{stem:<12} failed: {e:#}");
+                csv += &format!(
+                    "{stem},,,{},,\"{}\"\n",
+                    ",".repeat(TABLE_STRAINS.len() - 1),
+                    format!("{e:#}").replace('"', "'")
+                );
+            }
+        }
+    }
+    println!("R: equilibrium ratio 2|F1 − F2|/|F1 + F2|, median over the plateau; σ: true 3-wave stress at that true strain on loading (- if not reached)");
+    std::fs::write(out.join("summary.csv"), csv)?;
+    println!(
+        "wrote {}/summary.csv and one folder per record",
+        out.display()
+    );
+    if failed > 0 {
+        anyhow::bail!(
+            "{failed} of {} records could not be processed (listed above)",
+            files.len()
+        );
+    }
+    Ok(())
+}
+
+fn fixed(v: Option<f64>, decimals: usize) -> String {
+    v.map_or("-".into(), |x| format!("{x:.decimals$}"))
+}
+
+/// One line of the folder table.
+struct TableRow {
+    rate: f64,
+    final_strain: f64,
+    /// True 3-wave stress at `TABLE_STRAINS` on loading [MPa], `None` where not reached.
+    stress_mpa: Vec<Option<f64>>,
+    median_r: f64,
+}
+
+impl TableRow {
+    fn of(a: &ShpbAnalysis) -> TableRow {
+        let q = &a.plateau;
+        let peak = (0..a.true_strain.len())
+            .max_by(|&i, &j| a.true_strain[i].total_cmp(&a.true_strain[j]))
+            .unwrap_or(0);
+        let loading = &a.true_strain[..=peak];
+        let stress_mpa = TABLE_STRAINS
+            .iter()
+            .map(|&e| {
+                let k = loading.iter().position(|&x| x >= e).filter(|&k| k > 0)?;
+                let w = (e - loading[k - 1]) / (loading[k] - loading[k - 1]);
+                let s = &a.true_stress_pa;
+                Some((s[k - 1] + w * (s[k] - s[k - 1])) / 1e6)
+            })
+            .collect();
+        let mut r: Vec<f64> = a.equilibrium_ratio[q.range.clone()].to_vec();
+        r.sort_by(f64::total_cmp);
+        TableRow {
+            rate: q.strain_rate_3wave_per_s,
+            final_strain: a.strain.iter().cloned().fold(0.0, f64::max),
+            stress_mpa,
+            median_r: r[r.len() / 2],
+        }
+    }
 }
 
 fn charts(a: &ShpbAnalysis, out: &Path) -> Result<()> {
