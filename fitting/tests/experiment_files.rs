@@ -265,6 +265,25 @@ fn shpb_polarity_and_calibrated_delays() {
         calibrated.bar.wave_speed_m_per_s(),
         plain.bar.wave_speed_m_per_s()
     );
+    // the alignment of the processing: default geometric, named, or an error at its line
+    assert_eq!(plain.alignment, fitting::shpb::Alignment::Geometric);
+    let aligned =
+        |a: &str| SHPB_TOML.replace("[columns]", &format!("alignment = \"{a}\"\n[columns]"));
+    let dir = folder(
+        "alignment",
+        &[
+            ("s.csv", csv),
+            ("a.toml", &aligned("force-balance")),
+            ("b.toml", &aligned("sideways")),
+        ],
+    );
+    let a = ShpbExperiment::load(&dir.join("a.toml")).unwrap();
+    assert_eq!(a.alignment, fitting::shpb::Alignment::ForceBalance);
+    let e = ShpbExperiment::load(&dir.join("b.toml")).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::InvalidValue { at, problem, .. } if at.line == 4 && problem.contains("force-balance")),
+        "{e}"
+    );
 }
 
 /// The real 304L tension files, read as they are, if the shared data folder exists.

@@ -4,7 +4,7 @@
 //! exact stress-strain curve within 1 %.
 
 use fitting::shpb::synthetic::{SyntheticSetup, SyntheticShpb};
-use fitting::shpb::{analyze, synthetic_round_trip, ShpbError};
+use fitting::shpb::{analyze, analyze_aligned, synthetic_round_trip, Alignment, ShpbError};
 
 #[test]
 fn stress_strain_curve_comes_back_within_one_percent() {
@@ -143,4 +143,34 @@ fn calibrated_delays_align_the_pulses() {
     let expected = 2.0 * 0.02 * bar.incident_delay_s();
     let late = p.reflected_arrival_offset_s - stated.reflected_arrival_offset_s;
     assert!((late - expected).abs() < 0.1e-6, "{late} vs {expected}");
+}
+
+/// Alignment on a synthetic record with known delays: gauges whose travel times are 2 %
+/// longer than d/c0, processed with d/c0. Reading the reflected pulse needs the extra
+/// round trip 2 Δ_i, the transmitted one Δ_i + Δ_t; the force balance finds both within
+/// 0.05 µs, 1.6 samples (the record is in equilibrium by construction).
+#[test]
+fn force_balance_finds_known_delays() {
+    let mut setup = SyntheticSetup::steel_945_like(10);
+    let (di, dt) = (
+        setup.bar.incident_delay_s(),
+        setup.bar.transmitted_delay_s(),
+    );
+    setup.bar.incident_delay_calibrated_s = Some(1.02 * di);
+    setup.bar.transmitted_delay_calibrated_s = Some(1.02 * dt);
+    let mut exp = SyntheticShpb::generate(&setup).experiment;
+    exp.bar.incident_delay_calibrated_s = None;
+    exp.bar.transmitted_delay_calibrated_s = None;
+    let a = analyze_aligned(&exp, Alignment::ForceBalance).unwrap();
+    let (want_r, want_t) = (2.0 * 0.02 * di, 0.02 * (di + dt));
+    assert!(
+        (a.shifts.reflected_s - want_r).abs() < 0.05e-6,
+        "{} vs {want_r}",
+        a.shifts.reflected_s
+    );
+    assert!(
+        (a.shifts.transmitted_s - want_t).abs() < 0.05e-6,
+        "{} vs {want_t}",
+        a.shifts.transmitted_s
+    );
 }

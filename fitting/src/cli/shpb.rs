@@ -8,7 +8,7 @@
 
 use crate::chart::{LineChart, Series};
 use crate::experiment::ShpbExperiment;
-use crate::shpb::{analyze, ShpbAnalysis};
+use crate::shpb::{analyze, analyze_aligned, Alignment, ShpbAnalysis};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 
@@ -31,6 +31,7 @@ pub fn run(args: Args) -> Result<()> {
     }
     let (exp, a) = process(&args.experiment, &out)?;
     summary(&exp, &a);
+    alignments(&exp);
     println!("wrote {}/shpb.csv and charts", out.display());
     Ok(())
 }
@@ -132,6 +133,30 @@ fn run_folder(folder: &Path, out: &Path) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// Each alignment's shifts and the equilibrium and rate they give (the record is
+/// processed with its own, `alignment` in its TOML).
+fn alignments(exp: &ShpbExperiment) {
+    println!("  alignment      reflected δ  transmitted δ  median R  plateau rate");
+    for alignment in Alignment::ALL {
+        match analyze_aligned(exp, alignment) {
+            Ok(a) => println!(
+                "  {:<14} {:>+9.2} µs   {:>+9.2} µs   {:>7.3}   {:>8.1} 1/s{}",
+                alignment.to_string(),
+                a.shifts.reflected_s * 1e6,
+                a.shifts.transmitted_s * 1e6,
+                TableRow::of(&a).median_r,
+                a.plateau.strain_rate_3wave_per_s,
+                if alignment == exp.alignment {
+                    "  (used)"
+                } else {
+                    ""
+                }
+            ),
+            Err(e) => println!("  {alignment:<14} failed: {e}"),
+        }
+    }
 }
 
 fn fixed(v: Option<f64>, decimals: usize) -> String {

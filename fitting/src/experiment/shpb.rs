@@ -7,6 +7,7 @@
 //! data = "path/relative/to/this.csv"
 //! temperature = "293.15 K"
 //! polarity = "compression-negative"   # default; "compression-positive" flips both gauges
+//! alignment = "geometric"              # default; "arrival" or "force-balance" (shpb::alignment)
 //! [columns]
 //! time = { name = "time_s", unit = "s" }
 //! incident = { name = "incident_microstrain", unit = "microstrain" }
@@ -45,6 +46,7 @@ use super::lanl_raw::RawRecord;
 use super::sidecar::{ColumnSpec, Sidecar};
 use super::table::CsvTable;
 use super::units::Dimension;
+use crate::shpb::Alignment;
 use serde::Deserialize;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
@@ -60,6 +62,7 @@ struct ShpbFile {
     data: Spanned<String>,
     temperature: Spanned<String>,
     polarity: Option<Spanned<String>>,
+    alignment: Option<Spanned<String>>,
     columns: ShpbColumns,
     bar: BarSpec,
     specimen: SpecimenSpec,
@@ -83,6 +86,7 @@ struct LanlFile {
     name: Option<String>,
     data: Spanned<String>,
     polarity: Option<Spanned<String>>,
+    alignment: Option<Spanned<String>>,
     active_arms: Spanned<u32>,
 }
 
@@ -202,6 +206,8 @@ pub struct ShpbExperiment {
     pub incident: Vec<f64>,
     /// Transmitted-bar gauge strain [-].
     pub transmitted: Vec<f64>,
+    /// How the processing places the reflected and transmitted pulses.
+    pub alignment: Alignment,
     /// What the reader noticed and decided (a density in g/cm³ under a kg/m³ label,
     /// gains that disagree), for the report.
     pub notes: Vec<String>,
@@ -314,6 +320,7 @@ impl ShpbExperiment {
             time_s,
             incident,
             transmitted,
+            alignment: alignment(&sidecar, spec.alignment.as_ref())?,
             notes: Vec::new(),
         })
     }
@@ -323,6 +330,20 @@ fn stem(toml_file: &Path) -> String {
     toml_file
         .file_stem()
         .map_or_else(|| "shpb".into(), |s| s.to_string_lossy().into_owned())
+}
+
+/// The `alignment` key (default geometric).
+fn alignment(
+    sidecar: &Sidecar,
+    key: Option<&Spanned<String>>,
+) -> Result<Alignment, ExperimentError> {
+    match key {
+        None => Ok(Alignment::Geometric),
+        Some(a) => a
+            .get_ref()
+            .parse()
+            .map_err(|problem: String| sidecar.invalid("alignment", a.span(), problem)),
+    }
 }
 
 /// +1 for a record stored compression negative (the default), −1 for one declared
@@ -372,6 +393,7 @@ fn load_lanl(sidecar: &Sidecar, toml_file: &Path) -> Result<ShpbExperiment, Expe
         time_s: raw.time_s(),
         incident,
         transmitted,
+        alignment: alignment(sidecar, spec.alignment.as_ref())?,
         notes,
         data_file,
     })

@@ -11,8 +11,10 @@
 //! - true strain ln(L_s/L) = −ln(1 − ε), true stress σ (1 − ε) (constant volume)
 //! - equilibrium ratio R = 2 |F1 − F2| / |F1 + F2| [-]
 //!
-//! Time runs from the start of the analysis window at the faces (ε = 0 there).
+//! Time runs from the start of the analysis window at the faces (ε = 0 there). The
+//! reflected and transmitted pulses are placed by the record's `alignment`.
 
+use super::alignment::{self, Alignment, Shifts};
 use super::error::ShpbError;
 use super::plateau::Plateau;
 use super::pulses::{detect_pulses, PulseWindows};
@@ -56,11 +58,23 @@ pub struct ShpbAnalysis {
     /// R = 2 |F1 − F2| / |F1 + F2| [-].
     pub equilibrium_ratio: Vec<f64>,
     pub pulses: PulseWindows,
+    /// How the reflected and transmitted pulses were placed, and the shifts it added.
+    pub alignment: Alignment,
+    pub shifts: Shifts,
     pub plateau: Plateau,
 }
 
-/// Process the raw record: baselines, pulses, time shift, wave analysis, plateau.
+/// Process the raw record with its own alignment (`ShpbExperiment::alignment`).
 pub fn analyze(exp: &ShpbExperiment) -> Result<ShpbAnalysis, ShpbError> {
+    analyze_aligned(exp, exp.alignment)
+}
+
+/// Process the raw record: baselines, pulses, time shift (`alignment`), wave analysis,
+/// plateau.
+pub fn analyze_aligned(
+    exp: &ShpbExperiment,
+    alignment: Alignment,
+) -> Result<ShpbAnalysis, ShpbError> {
     let pulses = detect_pulses(exp)?;
     let t = &exp.time_s;
     let n = t.len();
@@ -75,6 +89,7 @@ pub fn analyze(exp: &ShpbExperiment) -> Result<ShpbAnalysis, ShpbError> {
             source,
         })?;
     let face_times: Vec<f64> = (0..samples).map(|k| start + k as f64 * dt).collect();
+    let shifts = alignment::shifts(alignment, exp, &pulses, &face_times);
     let (di, dtr) = (pulses.delay_incident_s, pulses.delay_transmitted_s);
     let read = |values: &[f64], baseline: f64, shift: f64| -> Vec<f64> {
         face_times
@@ -83,8 +98,16 @@ pub fn analyze(exp: &ShpbExperiment) -> Result<ShpbAnalysis, ShpbError> {
             .collect()
     };
     let incident = read(&exp.incident, pulses.baseline_incident, -di);
-    let reflected = read(&exp.incident, pulses.baseline_incident, di);
-    let transmitted = read(&exp.transmitted, pulses.baseline_transmitted, dtr);
+    let reflected = read(
+        &exp.incident,
+        pulses.baseline_incident,
+        di + shifts.reflected_s,
+    );
+    let transmitted = read(
+        &exp.transmitted,
+        pulses.baseline_transmitted,
+        dtr + shifts.transmitted_s,
+    );
 
     let bar = &exp.bar;
     let c0 = bar.wave_speed_m_per_s();
@@ -140,6 +163,8 @@ pub fn analyze(exp: &ShpbExperiment) -> Result<ShpbAnalysis, ShpbError> {
         specimen_length_m,
         equilibrium_ratio,
         pulses,
+        alignment,
+        shifts,
         plateau,
     })
 }

@@ -1,12 +1,14 @@
 //! Split-Hopkinson-Pressure-Bar signal processing (DESIGN 7.1): baseline removal, pulse
 //! detection, time shift of each pulse to the specimen faces (c0 = √(E_b/ρ_b) and the
-//! gauge distances), face velocities and forces, 1-, 2- and 3-wave stress, strain rate,
+//! gauge distances, or calibrated delays; aligned geometrically, by measured arrival or
+//! by force balance), face velocities and forces, 1-, 2- and 3-wave stress, strain rate,
 //! strain, true stress and strain, equilibrium ratio, and the strain-rate plateau.
 //!
 //! Inputs are raw gauge strains as recorded (compression negative); every output is
 //! compression positive. [`analyze`] is the entry point; the relative face velocity and
 //! the face forces F1, F2 it returns drive and check the fitting models of the specimen.
 
+pub mod alignment;
 mod analysis;
 mod error;
 mod plateau;
@@ -15,7 +17,8 @@ pub(crate) mod signal;
 pub mod synthetic;
 mod verify;
 
-pub use analysis::{analyze, ShpbAnalysis};
+pub use alignment::{Alignment, Shifts};
+pub use analysis::{analyze, analyze_aligned, ShpbAnalysis};
 pub use error::ShpbError;
 pub use plateau::Plateau;
 pub use pulses::{detect_pulses, PulseWindows};

@@ -230,6 +230,7 @@ impl SyntheticShpb {
                 time_s: record_time,
                 incident,
                 transmitted: transmitted_gauge,
+                alignment: crate::shpb::Alignment::Geometric,
                 notes: Vec::new(),
             },
             load_start_s,

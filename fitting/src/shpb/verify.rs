@@ -2,7 +2,8 @@
 //! known specimen curve, and the agreement of paired real tests (945 steel, pairs 1-2,
 //! 3-4, 5-6 at similar impact levels) when the shared data folder is present.
 
-use super::analysis::{analyze, ShpbAnalysis};
+use super::alignment::Alignment;
+use super::analysis::{analyze, analyze_aligned, ShpbAnalysis};
 use super::synthetic::{SyntheticSetup, SyntheticShpb};
 use super::ShpbError;
 use crate::case_result::CaseResult;
@@ -72,6 +73,41 @@ pub fn synthetic_round_trip(setup: &SyntheticSetup) -> Result<RoundTrip, ShpbErr
     })
 }
 
+/// Median equilibrium ratio over the plateau.
+fn median_ratio(a: &ShpbAnalysis) -> f64 {
+    let mut r = a.equilibrium_ratio[a.plateau.range.clone()].to_vec();
+    r.sort_by(f64::total_cmp);
+    r[r.len() / 2]
+}
+
+/// The six 945 records aligned by force balance against geometrically: the median R
+/// must fall on every record; the largest force-balance median R is reported beside the
+/// source tool's 0.09 (its own force-balance alignment, 0.05-0.09 on these records).
+fn steel_945_alignment_cases(files: &[std::path::PathBuf]) -> Vec<CaseResult> {
+    let ratios: Option<Vec<(f64, f64)>> = files
+        .iter()
+        .map(|f| {
+            let exp = ShpbExperiment::load(f).ok()?;
+            let geometric = analyze_aligned(&exp, Alignment::Geometric).ok()?;
+            let balanced = analyze_aligned(&exp, Alignment::ForceBalance).ok()?;
+            Some((median_ratio(&geometric), median_ratio(&balanced)))
+        })
+        .collect();
+    let name = "shpb/steel945: force balance lowers the median R of every record";
+    let Some(ratios) = ratios else {
+        return vec![CaseResult::holds(name, false)];
+    };
+    let worst = ratios.iter().map(|r| r.1).fold(0.0, f64::max);
+    vec![
+        CaseResult::holds(name, ratios.iter().all(|(g, b)| b < g)),
+        CaseResult::info(
+            "shpb/steel945: largest force-balance median R (source tool: 0.09)",
+            worst,
+            0.09,
+        ),
+    ]
+}
+
 /// Plateau strain rate of 945 test 05 in the hand-processed workbook of the data's
 /// source tool (shpb-shtb-data-processor) [1/s].
 pub const WORKBOOK_RATE_TEST_05: f64 = 1876.0;
@@ -103,10 +139,51 @@ fn polarity_and_delay_cases() -> Vec<CaseResult> {
             CaseResult::holds("shpb/calibrated delays: round trip runs", false)
         }
     };
-    vec![
+    let mut rows = vec![
         CaseResult::holds("shpb/polarity: inverted synthetic record refused", refused),
         delayed,
-    ]
+    ];
+    rows.extend(alignment_cases());
+    rows
+}
+
+/// Force-balance alignment of a synthetic record whose gauges sit 2 % further in time
+/// than d/c0, processed with d/c0: the reflected read needs 2 Δ_i more, the transmitted
+/// Δ_i + Δ_t. Asserted within 0.05 µs (1.6 samples of 32 ns).
+fn alignment_cases() -> Vec<CaseResult> {
+    let mut setup = SyntheticSetup::steel_945_like(10);
+    let (di, dt) = (
+        setup.bar.incident_delay_s(),
+        setup.bar.transmitted_delay_s(),
+    );
+    setup.bar.incident_delay_calibrated_s = Some(1.02 * di);
+    setup.bar.transmitted_delay_calibrated_s = Some(1.02 * dt);
+    let mut exp = SyntheticShpb::generate(&setup).experiment;
+    exp.bar.incident_delay_calibrated_s = None;
+    exp.bar.transmitted_delay_calibrated_s = None;
+    match analyze_aligned(&exp, Alignment::ForceBalance) {
+        Ok(a) => vec![
+            CaseResult::absolute(
+                "shpb/alignment: force balance, reflected shift [us]",
+                a.shifts.reflected_s * 1e6,
+                2.0 * 0.02 * di * 1e6,
+                0.05,
+            ),
+            CaseResult::absolute(
+                "shpb/alignment: force balance, transmitted shift [us]",
+                a.shifts.transmitted_s * 1e6,
+                0.02 * (di + dt) * 1e6,
+                0.05,
+            ),
+        ],
+        Err(e) => {
+            eprintln!("shpb/alignment: {e}");
+            vec![CaseResult::holds(
+                "shpb/alignment: synthetic record processed",
+                false,
+            )]
+        }
+    }
 }
 
 /// Rows of `mpw verify` for the SHPB processing.
@@ -174,6 +251,7 @@ pub fn verify_cases(data: &VerifyData) -> Vec<CaseResult> {
         ),
         None => CaseResult::holds("shpb/steel945 test 05 processed", false),
     });
+    cases.extend(steel_945_alignment_cases(&files));
     for pair in [(0, 1), (2, 3), (4, 5)] {
         let name = format!("shpb/steel945 rate test {} vs {}", pair.1 + 1, pair.0 + 1);
         cases.push(match (rates[pair.0], rates[pair.1]) {
