@@ -4,7 +4,9 @@
 //! exact stress-strain curve within 1 %.
 
 use fitting::shpb::synthetic::{SyntheticSetup, SyntheticShpb};
-use fitting::shpb::{analyze, analyze_aligned, synthetic_round_trip, Alignment, ShpbError};
+use fitting::shpb::{
+    analyze, analyze_aligned, record_with_late_gauges, synthetic_round_trip, Alignment, ShpbError,
+};
 
 #[test]
 fn stress_strain_curve_comes_back_within_one_percent() {
@@ -151,18 +153,13 @@ fn calibrated_delays_align_the_pulses() {
 /// 0.05 µs, 1.6 samples (the record is in equilibrium by construction).
 #[test]
 fn force_balance_finds_known_delays() {
-    let mut setup = SyntheticSetup::steel_945_like(10);
-    let (di, dt) = (
-        setup.bar.incident_delay_s(),
-        setup.bar.transmitted_delay_s(),
-    );
-    setup.bar.incident_delay_calibrated_s = Some(1.02 * di);
-    setup.bar.transmitted_delay_calibrated_s = Some(1.02 * dt);
-    let mut exp = SyntheticShpb::generate(&setup).experiment;
-    exp.bar.incident_delay_calibrated_s = None;
-    exp.bar.transmitted_delay_calibrated_s = None;
+    let (exp, needed) = record_with_late_gauges(10);
+    // the shifts the late gauges need, from the bar itself
+    let bar = SyntheticSetup::steel_945_like(10).bar;
+    let (di, dt) = (bar.incident_delay_s(), bar.transmitted_delay_s());
     let a = analyze_aligned(&exp, Alignment::ForceBalance).unwrap();
     let (want_r, want_t) = (2.0 * 0.02 * di, 0.02 * (di + dt));
+    assert!((needed.reflected_s - want_r).abs() < 1e-15);
     assert!(
         (a.shifts.reflected_s - want_r).abs() < 0.05e-6,
         "{} vs {want_r}",

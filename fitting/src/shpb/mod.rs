@@ -22,4 +22,4 @@ pub use analysis::{analyze, analyze_aligned, ShpbAnalysis};
 pub use error::ShpbError;
 pub use plateau::Plateau;
 pub use pulses::{detect_pulses, PulseWindows};
-pub use verify::{synthetic_round_trip, verify_cases, RoundTrip};
+pub use verify::{record_with_late_gauges, synthetic_round_trip, verify_cases, RoundTrip};
