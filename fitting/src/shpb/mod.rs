@@ -10,6 +10,7 @@
 
 pub mod alignment;
 mod analysis;
+pub mod dispersion;
 mod error;
 mod plateau;
 pub(crate) mod pulses;

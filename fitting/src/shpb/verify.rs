@@ -144,6 +144,17 @@ fn polarity_and_delay_cases() -> Vec<CaseResult> {
         delayed,
     ];
     rows.extend(alignment_cases());
+    let (dispersed, recovered) = super::dispersion::round_trip();
+    rows.push(CaseResult::info(
+        "shpb/dispersion: pulse after 0.75 m with dispersion, max change (rel)",
+        dispersed,
+        0.0,
+    ));
+    rows.push(CaseResult::at_most(
+        "shpb/dispersion: corrected back, max error (rel)",
+        recovered,
+        1e-3,
+    ));
     rows
 }
 
