@@ -146,7 +146,7 @@ fn alignments(exp: &ShpbExperiment) {
                 alignment.to_string(),
                 a.shifts.reflected_s * 1e6,
                 a.shifts.transmitted_s * 1e6,
-                TableRow::of(&a).median_r,
+                a.median_equilibrium_ratio(),
                 a.plateau.strain_rate_3wave_per_s,
                 if alignment == exp.alignment {
                     "  (used)"
@@ -188,13 +188,11 @@ impl TableRow {
                 Some((s[k - 1] + w * (s[k] - s[k - 1])) / 1e6)
             })
             .collect();
-        let mut r: Vec<f64> = a.equilibrium_ratio[q.range.clone()].to_vec();
-        r.sort_by(f64::total_cmp);
         TableRow {
             rate: q.strain_rate_3wave_per_s,
             final_strain: a.strain.iter().cloned().fold(0.0, f64::max),
             stress_mpa,
-            median_r: r[r.len() / 2],
+            median_r: a.median_equilibrium_ratio(),
         }
     }
 }

@@ -78,7 +78,8 @@ struct FormatOnly {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct LanlFile {
-    /// Checked before this type is parsed, as `format`.
+    /// Checked by `Sidecar::parse_kind` before this type is parsed, and `format` by
+    /// `ShpbExperiment::load`.
     #[allow(dead_code)]
     kind: Spanned<String>,
     #[allow(dead_code)]
@@ -217,7 +218,6 @@ impl ShpbExperiment {
     /// Read an SHPB experiment TOML and the CSV it names.
     pub fn load(toml_file: &Path) -> Result<ShpbExperiment, ExperimentError> {
         let sidecar = Sidecar::read(toml_file)?;
-        sidecar.parse_kind::<super::sidecar::KindOnly>("shpb")?;
         match sidecar.parse::<FormatOnly>()?.format {
             None => {}
             Some(f) if f.get_ref() == "csv" => {}
@@ -367,7 +367,7 @@ fn polarity_sign(
 /// and temperature from the file (`RawRecord::bar`, `RawRecord::gauge_strain`), the
 /// bridge and polarity from the TOML.
 fn load_lanl(sidecar: &Sidecar, toml_file: &Path) -> Result<ShpbExperiment, ExperimentError> {
-    let spec: LanlFile = sidecar.parse()?;
+    let spec: LanlFile = sidecar.parse_kind("shpb")?;
     let sign = polarity_sign(sidecar, spec.polarity.as_ref())?;
     let arms = *spec.active_arms.get_ref();
     if ![1, 2, 4].contains(&arms) {

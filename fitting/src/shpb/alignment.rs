@@ -111,15 +111,13 @@ fn force_balance(exp: &ShpbExperiment, p: &PulseWindows, face_times: &[f64]) -> 
         baseline: p.baseline_incident,
         delay: -p.delay_incident_s,
     };
-    let eps_i = incident.read(face_times, 0.0);
-    let peak = eps_i.iter().cloned().fold(0.0, f64::max);
-    let body: Vec<f64> = face_times
+    let all = incident.read(face_times, 0.0);
+    let peak = all.iter().cloned().fold(0.0, f64::max);
+    let (body, eps_i): (Vec<f64>, Vec<f64>) = face_times
         .iter()
-        .zip(&eps_i)
+        .zip(&all)
         .filter(|(_, e)| **e > 0.5 * peak)
-        .map(|(t, _)| *t)
-        .collect();
-    let eps_i: Vec<f64> = incident.read(&body, 0.0);
+        .unzip();
     let reflected = Gauge {
         delay: p.delay_incident_s,
         ..incident

@@ -170,6 +170,13 @@ pub fn analyze_aligned(
 }
 
 impl ShpbAnalysis {
+    /// Median of the equilibrium ratio R over the plateau [-].
+    pub fn median_equilibrium_ratio(&self) -> f64 {
+        let mut r = self.equilibrium_ratio[self.plateau.range.clone()].to_vec();
+        r.sort_by(f64::total_cmp);
+        r[r.len() / 2]
+    }
+
     /// Every history with a column name that states quantity, sign and unit.
     pub fn columns(&self) -> Vec<(&'static str, &[f64])> {
         vec![

@@ -73,13 +73,6 @@ pub fn synthetic_round_trip(setup: &SyntheticSetup) -> Result<RoundTrip, ShpbErr
     })
 }
 
-/// Median equilibrium ratio over the plateau.
-fn median_ratio(a: &ShpbAnalysis) -> f64 {
-    let mut r = a.equilibrium_ratio[a.plateau.range.clone()].to_vec();
-    r.sort_by(f64::total_cmp);
-    r[r.len() / 2]
-}
-
 /// The six 945 records aligned by force balance against geometrically: the median R
 /// must fall on every record; the largest force-balance median R is reported beside the
 /// source tool's 0.09 (its own force-balance alignment, 0.05-0.09 on these records).
@@ -90,7 +83,10 @@ fn steel_945_alignment_cases(files: &[std::path::PathBuf]) -> Vec<CaseResult> {
             let exp = ShpbExperiment::load(f).ok()?;
             let geometric = analyze_aligned(&exp, Alignment::Geometric).ok()?;
             let balanced = analyze_aligned(&exp, Alignment::ForceBalance).ok()?;
-            Some((median_ratio(&geometric), median_ratio(&balanced)))
+            Some((
+                geometric.median_equilibrium_ratio(),
+                balanced.median_equilibrium_ratio(),
+            ))
         })
         .collect();
     let name = "shpb/steel945: force balance lowers the median R of every record";
