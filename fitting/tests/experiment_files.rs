@@ -266,7 +266,7 @@ fn shpb_polarity_and_calibrated_delays() {
         plain.bar.wave_speed_m_per_s()
     );
     // the alignment of the processing: default geometric, named, or an error at its line
-    assert_eq!(plain.alignment, fitting::shpb::Alignment::Geometric);
+    assert_eq!(plain.processing, fitting::shpb::Processing::default());
     let aligned =
         |a: &str| SHPB_TOML.replace("[columns]", &format!("alignment = \"{a}\"\n[columns]"));
     let dir = folder(
@@ -278,10 +278,49 @@ fn shpb_polarity_and_calibrated_delays() {
         ],
     );
     let a = ShpbExperiment::load(&dir.join("a.toml")).unwrap();
-    assert_eq!(a.alignment, fitting::shpb::Alignment::ForceBalance);
+    assert_eq!(
+        a.processing.alignment,
+        fitting::shpb::Alignment::ForceBalance
+    );
     let e = ShpbExperiment::load(&dir.join("b.toml")).unwrap_err();
     assert!(
         matches!(&e, ExperimentError::InvalidValue { at, problem, .. } if at.line == 4 && problem.contains("force-balance")),
+        "{e}"
+    );
+}
+
+/// The dispersion correction is off by default; on, it needs the bars' Poisson ratio,
+/// which must lie in (0, 0.5): errors name the key and its line.
+#[test]
+fn shpb_dispersion_needs_a_poisson_ratio() {
+    let csv = "t_us,inc_v,tr_ue\n0,-100,-50\n1,200,25\n";
+    let with = |nu: Option<&str>| {
+        let toml = SHPB_TOML.replace("[columns]", "dispersion = true\n[columns]");
+        match nu {
+            Some(nu) => toml.replace("[specimen]", &format!("poisson_ratio = {nu}\n[specimen]")),
+            None => toml,
+        }
+    };
+    let dir = folder(
+        "dispersion",
+        &[
+            ("s.csv", csv),
+            ("ok.toml", &with(Some("0.29"))),
+            ("none.toml", &with(None)),
+            ("bad.toml", &with(Some("29"))),
+        ],
+    );
+    let ok = ShpbExperiment::load(&dir.join("ok.toml")).unwrap();
+    assert!(ok.processing.dispersion);
+    assert_eq!(ok.bar.poisson_ratio, Some(0.29));
+    let e = ShpbExperiment::load(&dir.join("none.toml")).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::InvalidValue { at, problem, .. } if at.line == 4 && problem.contains("poisson_ratio")),
+        "{e}"
+    );
+    let e = ShpbExperiment::load(&dir.join("bad.toml")).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::InvalidValue { at, problem, .. } if at.line == 15 && problem.contains("between 0 and 0.5")),
         "{e}"
     );
 }
@@ -601,4 +640,33 @@ fn a_file_of_the_other_kind_is_named_as_such() {
         matches!(&e, ExperimentError::WrongKind { found, .. } if found == "shpb"),
         "{e}"
     );
+}
+
+/// A bar whose wave speed √(E/ρ) lies outside 1000-8000 m/s is refused at the key that
+/// made it, with the likely cause (a density in g/cm³ under kg/m³, a modulus in MPa).
+#[test]
+fn shpb_bar_wave_speed_is_checked() {
+    let csv = "t_us,inc_v,tr_ue\n0,-100,-50\n1,200,25\n";
+    let bar = |line: &str| SHPB_TOML.replace("wave_speed = \"5000 m/s\"", line);
+    let dir = folder(
+        "wave_speed",
+        &[
+            ("s.csv", csv),
+            ("slow.toml", &bar("wave_speed = \"500 m/s\"")),
+            ("grams.toml", &bar("density = \"7.85 kg/m^3\"")),
+            ("steel.toml", &bar("density = \"7850 kg/m^3\"")),
+        ],
+    );
+    let e = ShpbExperiment::load(&dir.join("slow.toml")).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::InvalidValue { at, key, problem, .. } if at.line == 10 && key == "bar.wave_speed" && problem.contains("500 m/s")),
+        "{e}"
+    );
+    let e = ShpbExperiment::load(&dir.join("grams.toml")).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::InvalidValue { at, key, problem, .. } if at.line == 10 && key == "bar.density" && problem.contains("g/cm³")),
+        "{e}"
+    );
+    let steel = ShpbExperiment::load(&dir.join("steel.toml")).unwrap();
+    assert!((steel.bar.wave_speed_m_per_s() - (200e9f64 / 7850.0).sqrt()).abs() < 1e-9);
 }

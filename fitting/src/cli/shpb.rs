@@ -8,7 +8,7 @@
 
 use crate::chart::{LineChart, Series};
 use crate::experiment::ShpbExperiment;
-use crate::shpb::{analyze, analyze_aligned, Alignment, ShpbAnalysis};
+use crate::shpb::{analyze, analyze_with, Alignment, Processing, ShpbAnalysis};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 
@@ -135,26 +135,42 @@ fn run_folder(folder: &Path, out: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Each alignment's shifts and the equilibrium and rate they give (the record is
-/// processed with its own, `alignment` in its TOML).
+/// Each alignment's shifts, with and without the dispersion correction (when the bar's
+/// Poisson ratio is known), and the equilibrium and rate they give (the record is
+/// processed as its TOML asks).
 fn alignments(exp: &ShpbExperiment) {
-    println!("  alignment      reflected δ  transmitted δ  median R  plateau rate");
-    for alignment in Alignment::ALL {
-        match analyze_aligned(exp, alignment) {
-            Ok(a) => println!(
-                "  {:<14} {:>+9.2} µs   {:>+9.2} µs   {:>7.3}   {:>8.1} 1/s{}",
-                alignment.to_string(),
-                a.shifts.reflected_s * 1e6,
-                a.shifts.transmitted_s * 1e6,
-                a.median_equilibrium_ratio(),
-                a.plateau.strain_rate_3wave_per_s,
-                if alignment == exp.alignment {
-                    "  (used)"
-                } else {
-                    ""
-                }
-            ),
-            Err(e) => println!("  {alignment:<14} failed: {e}"),
+    println!(
+        "  processing                  reflected δ  transmitted δ  median R  F1 osc.  plateau rate"
+    );
+    let corrections: &[bool] = if exp.bar.poisson_ratio.is_some() {
+        &[false, true]
+    } else {
+        &[false]
+    };
+    for &dispersion in corrections {
+        for alignment in Alignment::ALL {
+            let processing = Processing {
+                alignment,
+                dispersion,
+                ..exp.processing
+            };
+            match analyze_with(exp, processing) {
+                Ok(a) => println!(
+                    "  {:<27} {:>+9.2} µs   {:>+9.2} µs   {:>7.3}   {:>5.1} %  {:>8.1} 1/s{}",
+                    processing.to_string(),
+                    a.shifts.reflected_s * 1e6,
+                    a.shifts.transmitted_s * 1e6,
+                    a.median_equilibrium_ratio(),
+                    100.0 * a.force_front_oscillation(),
+                    a.plateau.strain_rate_3wave_per_s,
+                    if processing == exp.processing {
+                        "  (used)"
+                    } else {
+                        ""
+                    }
+                ),
+                Err(e) => println!("  {processing:<27} failed: {e}"),
+            }
         }
     }
 }

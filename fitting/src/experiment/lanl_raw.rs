@@ -138,8 +138,8 @@ impl RawRecord {
     /// transmitted one is its gauge distance over the same calibrated timing speed (one
     /// bar material, one calibration).
     pub fn bar(&self, notes: &mut Vec<String>) -> Result<Bar, ExperimentError> {
-        let e = self.both_bars("Young's Modulus", Dimension::Modulus)?;
-        let c0 = self.both_bars("Rod Sound Speed", Dimension::Velocity)?;
+        let e = self.both_bars("Young's Modulus", Some(Dimension::Modulus))?;
+        let c0 = self.both_bars("Rod Sound Speed", Some(Dimension::Velocity))?;
         let density = e / (c0 * c0);
         let stated = self.number("Incident Bar Density", Some(Dimension::Density))?;
         if ((1e3 * stated) / density - 1.0).abs() < AGREE {
@@ -160,22 +160,37 @@ impl RawRecord {
         notes.push(format!(
             "timing at the calibrated {timing:.1} m/s, impedance at c0 = {c0:.1} m/s"
         ));
-        Ok(Bar {
+        let nu = self.both_bars("Poisson Ratio", None)?;
+        if !(nu > 0.0 && nu < 0.5) {
+            let line = self.entry("Incident Bar Poisson Ratio")?.line;
+            return Err(self.invalid_at(
+                line,
+                "Poisson Ratio",
+                format!("{nu}: expected a Poisson ratio between 0 and 0.5"),
+            ));
+        }
+        let bar = Bar {
             elastic_modulus_pa: e,
             density_kg_m3: density,
-            diameter_m: self.both_bars("Diameter", Dimension::Length)?,
+            diameter_m: self.both_bars("Diameter", Some(Dimension::Length))?,
             incident_gauge_to_specimen_m: self
                 .number("Incident Bar Strain Gage Location", length)?,
             transmitted_gauge_to_specimen_m: transmitted_distance,
             incident_delay_calibrated_s: Some(0.5 * round_trip),
             transmitted_delay_calibrated_s: Some(transmitted_distance / timing),
-        })
+            poisson_ratio: Some(nu),
+        };
+        if let Err(problem) = bar.check_wave_speed(false) {
+            let line = self.entry("Incident Bar Rod Sound Speed")?.line;
+            return Err(self.invalid_at(line, "Rod Sound Speed", problem));
+        }
+        Ok(bar)
     }
 
     /// The value of `Incident Bar {key}`, which `Transmitted Bar {key}` must repeat.
-    fn both_bars(&self, key: &str, dimension: Dimension) -> Result<f64, ExperimentError> {
-        let incident = self.number(&format!("Incident Bar {key}"), Some(dimension))?;
-        let transmitted = self.number(&format!("Transmitted Bar {key}"), Some(dimension))?;
+    fn both_bars(&self, key: &str, dimension: Option<Dimension>) -> Result<f64, ExperimentError> {
+        let incident = self.number(&format!("Incident Bar {key}"), dimension)?;
+        let transmitted = self.number(&format!("Transmitted Bar {key}"), dimension)?;
         if (incident - transmitted).abs() > 1e-9 * incident.abs() {
             let line = self.entry(&format!("Transmitted Bar {key}"))?.line;
             return Err(self.invalid_at(line, key, format!("{transmitted} on the transmitted bar against {incident} on the incident bar: mpw processes two bars of one material and diameter")));

@@ -8,6 +8,8 @@
 //! temperature = "293.15 K"
 //! polarity = "compression-negative"   # default; "compression-positive" flips both gauges
 //! alignment = "geometric"              # default; "arrival" or "force-balance" (shpb::alignment)
+//! dispersion = false                   # default; true corrects for Pochhammer-Chree dispersion (needs bar.poisson_ratio)
+//! # savitzky_golay = { window = 31, order = 3 }   # filter both gauges (window in samples, odd)
 //! [columns]
 //! time = { name = "time_s", unit = "s" }
 //! incident = { name = "incident_microstrain", unit = "microstrain" }
@@ -20,6 +22,7 @@
 //! diameter = "20 mm"
 //! incident_gauge_to_specimen = "1020 mm"
 //! transmitted_gauge_to_specimen = "770 mm"
+//! poisson_ratio = 0.29                 # optional; needed by dispersion = true
 //! # calibrated gauge-to-face travel times, when the laboratory measured them; default
 //! # distance / c0 (c0 stays the impedance wave speed)
 //! # incident_gauge_delay = "196.6 us"
@@ -46,7 +49,8 @@ use super::lanl_raw::RawRecord;
 use super::sidecar::{ColumnSpec, Sidecar};
 use super::table::CsvTable;
 use super::units::Dimension;
-use crate::shpb::Alignment;
+use crate::shpb::filter::SavitzkyGolay;
+use crate::shpb::{Alignment, Processing};
 use serde::Deserialize;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
@@ -63,6 +67,8 @@ struct ShpbFile {
     temperature: Spanned<String>,
     polarity: Option<Spanned<String>>,
     alignment: Option<Spanned<String>>,
+    dispersion: Option<Spanned<bool>>,
+    savitzky_golay: Option<Spanned<FilterSpec>>,
     columns: ShpbColumns,
     bar: BarSpec,
     specimen: SpecimenSpec,
@@ -88,7 +94,17 @@ struct LanlFile {
     data: Spanned<String>,
     polarity: Option<Spanned<String>>,
     alignment: Option<Spanned<String>>,
+    dispersion: Option<Spanned<bool>>,
+    savitzky_golay: Option<Spanned<FilterSpec>>,
     active_arms: Spanned<u32>,
+}
+
+/// `savitzky_golay = { window = 31, order = 3 }`: window in samples (odd).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FilterSpec {
+    window: usize,
+    order: usize,
 }
 
 #[derive(Deserialize)]
@@ -122,6 +138,7 @@ struct BarSpec {
     transmitted_gauge_to_specimen: Spanned<String>,
     incident_gauge_delay: Option<Spanned<String>>,
     transmitted_gauge_delay: Option<Spanned<String>>,
+    poisson_ratio: Option<Spanned<f64>>,
 }
 
 #[derive(Deserialize)]
@@ -130,6 +147,10 @@ struct SpecimenSpec {
     diameter: Spanned<String>,
     length: Spanned<String>,
 }
+
+/// Wave speeds of SHPB bars, from polymer (PMMA ≈ 2000 m/s, nylon lower) to steel and
+/// titanium (≈ 5000 m/s) with margin [m/s].
+pub const PLAUSIBLE_WAVE_SPEED: (f64, f64) = (1000.0, 8000.0);
 
 /// The incident and transmitted bars (same material and diameter).
 #[derive(Debug, Clone, PartialEq)]
@@ -148,12 +169,40 @@ pub struct Bar {
     /// faces [s], when the laboratory measured them (`None`: distance over c0).
     pub incident_delay_calibrated_s: Option<f64>,
     pub transmitted_delay_calibrated_s: Option<f64>,
+    /// Poisson's ratio ν of the bars, for the dispersion correction [-].
+    pub poisson_ratio: Option<f64>,
 }
 
 impl Bar {
     /// Bar wave speed c0 = √(E_b/ρ_b) [m/s].
     pub fn wave_speed_m_per_s(&self) -> f64 {
         (self.elastic_modulus_pa / self.density_kg_m3).sqrt()
+    }
+
+    /// The bar wave speed if it lies in `PLAUSIBLE_WAVE_SPEED` (bars of steel, titanium,
+    /// aluminium, magnesium, polymers), else what is wrong and the likely cause (from the
+    /// density when it was stated, `stated_density`).
+    pub fn check_wave_speed(&self, stated_density: bool) -> Result<f64, String> {
+        let c0 = self.wave_speed_m_per_s();
+        let (low, high) = PLAUSIBLE_WAVE_SPEED;
+        if (low..=high).contains(&c0) {
+            return Ok(c0);
+        }
+        let (e, rho) = (self.elastic_modulus_pa, self.density_kg_m3);
+        let likely = if stated_density && rho < 100.0 {
+            format!("the density {rho} kg/m³ looks like g/cm³")
+        } else if stated_density && rho > 30e3 {
+            format!("the density {rho} kg/m³ is beyond any metal's")
+        } else if e < 1e9 {
+            format!(
+                "the modulus {e:e} Pa looks like a value in MPa or GPa written in a smaller unit"
+            )
+        } else {
+            "check the modulus and the density (or the wave speed)".into()
+        };
+        Err(format!(
+            "bar wave speed c0 = √(E/ρ) = {c0:.0} m/s is outside the {low:.0}-{high:.0} m/s of SHPB bars: {likely}"
+        ))
     }
 
     /// Cross-section A_b = π d²/4 [m²].
@@ -207,8 +256,8 @@ pub struct ShpbExperiment {
     pub incident: Vec<f64>,
     /// Transmitted-bar gauge strain [-].
     pub transmitted: Vec<f64>,
-    /// How the processing places the reflected and transmitted pulses.
-    pub alignment: Alignment,
+    /// How the processing moves the pulses to the specimen faces.
+    pub processing: Processing,
     /// What the reader noticed and decided (a density in g/cm³ under a kg/m³ label,
     /// gains that disagree), for the report.
     pub notes: Vec<String>,
@@ -280,7 +329,26 @@ impl ShpbExperiment {
                 .as_ref()
                 .map(|d| sidecar.positive("bar.transmitted_gauge_delay", d, Dimension::Time))
                 .transpose()?,
+            poisson_ratio: b
+                .poisson_ratio
+                .as_ref()
+                .map(|nu| poisson_ratio(&sidecar, nu))
+                .transpose()?,
         };
+        bar.check_wave_speed(b.density.is_some())
+            .map_err(|problem| {
+                let key = if b.density.is_some() {
+                    "bar.density"
+                } else {
+                    "bar.wave_speed"
+                };
+                let span = b
+                    .density
+                    .as_ref()
+                    .or(b.wave_speed.as_ref())
+                    .map_or(b.elastic_modulus.span(), |v| v.span());
+                sidecar.invalid(key, span, problem)
+            })?;
         let specimen = Specimen {
             diameter_m: sidecar.positive(
                 "specimen.diameter",
@@ -314,13 +382,21 @@ impl ShpbExperiment {
         Ok(ShpbExperiment {
             name: spec.name.unwrap_or_else(|| stem(toml_file)),
             data_file,
-            bar,
             specimen,
             temperature_k,
             time_s,
             incident,
             transmitted,
-            alignment: alignment(&sidecar, spec.alignment.as_ref())?,
+            processing: processing(
+                &sidecar,
+                ProcessingKeys {
+                    alignment: spec.alignment.as_ref(),
+                    dispersion: spec.dispersion.as_ref(),
+                    savitzky_golay: spec.savitzky_golay.as_ref(),
+                },
+                &bar,
+            )?,
+            bar,
             notes: Vec::new(),
         })
     }
@@ -332,17 +408,63 @@ fn stem(toml_file: &Path) -> String {
         .map_or_else(|| "shpb".into(), |s| s.to_string_lossy().into_owned())
 }
 
-/// The `alignment` key (default geometric).
-fn alignment(
+/// The keys that choose the processing, as written in the TOML.
+struct ProcessingKeys<'a> {
+    alignment: Option<&'a Spanned<String>>,
+    dispersion: Option<&'a Spanned<bool>>,
+    savitzky_golay: Option<&'a Spanned<FilterSpec>>,
+}
+
+/// The `alignment` (default geometric), `dispersion` (default off; on, it needs the bar's
+/// Poisson ratio) and `savitzky_golay` (default none) keys.
+fn processing(
     sidecar: &Sidecar,
-    key: Option<&Spanned<String>>,
-) -> Result<Alignment, ExperimentError> {
-    match key {
-        None => Ok(Alignment::Geometric),
+    keys: ProcessingKeys,
+    bar: &Bar,
+) -> Result<Processing, ExperimentError> {
+    let ProcessingKeys {
+        alignment,
+        dispersion,
+        savitzky_golay,
+    } = keys;
+    let filter = savitzky_golay
+        .map(|f| {
+            SavitzkyGolay::new(f.get_ref().window, f.get_ref().order)
+                .map_err(|problem| sidecar.invalid("savitzky_golay", f.span(), problem))
+        })
+        .transpose()?;
+    let alignment = match alignment {
+        None => Alignment::Geometric,
         Some(a) => a
             .get_ref()
             .parse()
-            .map_err(|problem: String| sidecar.invalid("alignment", a.span(), problem)),
+            .map_err(|problem: String| sidecar.invalid("alignment", a.span(), problem))?,
+    };
+    if let (Some(d), None) = (dispersion.filter(|d| *d.get_ref()), bar.poisson_ratio) {
+        return Err(sidecar.invalid(
+            "dispersion",
+            d.span(),
+            "the dispersion correction needs the bars' Poisson ratio: state bar.poisson_ratio",
+        ));
+    }
+    Ok(Processing {
+        alignment,
+        dispersion: dispersion.is_some_and(|d| *d.get_ref()),
+        filter,
+    })
+}
+
+/// Poisson's ratio of the bars, which must lie in (0, 0.5).
+fn poisson_ratio(sidecar: &Sidecar, nu: &Spanned<f64>) -> Result<f64, ExperimentError> {
+    let v = *nu.get_ref();
+    if v > 0.0 && v < 0.5 {
+        Ok(v)
+    } else {
+        Err(sidecar.invalid(
+            "bar.poisson_ratio",
+            nu.span(),
+            format!("{v}: expected a Poisson ratio between 0 and 0.5 (steel 0.29, titanium 0.32)"),
+        ))
     }
 }
 
@@ -384,7 +506,6 @@ fn load_lanl(sidecar: &Sidecar, toml_file: &Path) -> Result<ShpbExperiment, Expe
     let transmitted = raw.gauge_strain("Transmitted", "Transmitted Bar Gain", scale, &mut notes)?;
     Ok(ShpbExperiment {
         name: spec.name.unwrap_or_else(|| stem(toml_file)),
-        bar,
         specimen: Specimen {
             diameter_m: raw.number("Initial Sample Diameter", Some(Dimension::Length))?,
             length_m: raw.number("Initial Sample Length", Some(Dimension::Length))?,
@@ -393,7 +514,16 @@ fn load_lanl(sidecar: &Sidecar, toml_file: &Path) -> Result<ShpbExperiment, Expe
         time_s: raw.time_s(),
         incident,
         transmitted,
-        alignment: alignment(sidecar, spec.alignment.as_ref())?,
+        processing: processing(
+            sidecar,
+            ProcessingKeys {
+                alignment: spec.alignment.as_ref(),
+                dispersion: spec.dispersion.as_ref(),
+                savitzky_golay: spec.savitzky_golay.as_ref(),
+            },
+            &bar,
+        )?,
+        bar,
         notes,
         data_file,
     })

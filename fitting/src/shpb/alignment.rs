@@ -11,9 +11,8 @@
 //!   0.25 µs grid within ±`MAX_SHIFT_S`, refined to 0.01 µs around the best point. The
 //!   data's source tool aligns this way.
 
+use super::gauges::{GaugeSignals, Pulse};
 use super::pulses::PulseWindows;
-use super::signal::interpolate;
-use crate::experiment::ShpbExperiment;
 use std::str::FromStr;
 
 /// Largest shift searched by the force balance [s].
@@ -67,11 +66,11 @@ pub struct Shifts {
     pub transmitted_s: f64,
 }
 
-/// The shifts of `alignment` for the record `exp` with its detected `pulses`, read at the
-/// face times `face_times` [s].
+/// The shifts of `alignment` for the gauge signals with their detected `pulses`, read
+/// at the face times `face_times` [s].
 pub fn shifts(
     alignment: Alignment,
-    exp: &ShpbExperiment,
+    gauges: &GaugeSignals,
     pulses: &PulseWindows,
     face_times: &[f64],
 ) -> Shifts {
@@ -81,53 +80,18 @@ pub fn shifts(
             reflected_s: pulses.reflected_arrival_offset_s,
             transmitted_s: pulses.transmitted_arrival_offset_s,
         },
-        Alignment::ForceBalance => force_balance(exp, pulses, face_times),
+        Alignment::ForceBalance => force_balance(gauges, face_times),
     }
 }
 
-/// The reads of one gauge: `values` minus `baseline` at the face times plus `delay`,
-/// compression positive.
-struct Gauge<'a> {
-    time: &'a [f64],
-    values: &'a [f64],
-    baseline: f64,
-    delay: f64,
-}
-
-impl Gauge<'_> {
-    fn read(&self, at: &[f64], shift: f64) -> Vec<f64> {
-        at.iter()
-            .map(|&tf| {
-                -(interpolate(self.time, self.values, tf + self.delay + shift) - self.baseline)
-            })
-            .collect()
-    }
-}
-
-fn force_balance(exp: &ShpbExperiment, p: &PulseWindows, face_times: &[f64]) -> Shifts {
-    let incident = Gauge {
-        time: &exp.time_s,
-        values: &exp.incident,
-        baseline: p.baseline_incident,
-        delay: -p.delay_incident_s,
-    };
-    let all = incident.read(face_times, 0.0);
+fn force_balance(gauges: &GaugeSignals, face_times: &[f64]) -> Shifts {
+    let all = gauges.read(Pulse::Incident, face_times, 0.0);
     let peak = all.iter().cloned().fold(0.0, f64::max);
     let (body, eps_i): (Vec<f64>, Vec<f64>) = face_times
         .iter()
         .zip(&all)
         .filter(|(_, e)| **e > 0.5 * peak)
         .unzip();
-    let reflected = Gauge {
-        delay: p.delay_incident_s,
-        ..incident
-    };
-    let transmitted = Gauge {
-        time: &exp.time_s,
-        values: &exp.transmitted,
-        baseline: p.baseline_transmitted,
-        delay: p.delay_transmitted_s,
-    };
     let misfit = |r: &[f64], t: &[f64]| -> f64 {
         (0..eps_i.len())
             .map(|k| (eps_i[k] + r[k] - t[k]).powi(2))
@@ -137,10 +101,10 @@ fn force_balance(exp: &ShpbExperiment, p: &PulseWindows, face_times: &[f64]) -> 
         let n = (half / step).round() as i64;
         let grid = |c: f64| (-n..=n).map(move |k| c + k as f64 * step);
         let r: Vec<(f64, Vec<f64>)> = grid(centre.reflected_s)
-            .map(|d| (d, reflected.read(&body, d)))
+            .map(|d| (d, gauges.read(Pulse::Reflected, &body, d)))
             .collect();
         let t: Vec<(f64, Vec<f64>)> = grid(centre.transmitted_s)
-            .map(|d| (d, transmitted.read(&body, d)))
+            .map(|d| (d, gauges.read(Pulse::Transmitted, &body, d)))
             .collect();
         let mut found = (f64::INFINITY, centre);
         for (dr, rv) in &r {

@@ -12,13 +12,17 @@
 //! - equilibrium ratio R = 2 |F1 − F2| / |F1 + F2| [-]
 //!
 //! Time runs from the start of the analysis window at the faces (ε = 0 there). The
-//! reflected and transmitted pulses are placed by the record's `alignment`.
+//! reflected and transmitted pulses are placed by the record's `Processing`: its
+//! alignment (`shpb::alignment`) and, if chosen, the dispersion correction
+//! (`shpb::gauges`).
 
 use super::alignment::{self, Alignment, Shifts};
 use super::error::ShpbError;
+use super::filter::{polynomial_trend, SavitzkyGolay};
+use super::gauges::{GaugeSignals, Pulse};
 use super::plateau::Plateau;
-use super::pulses::{detect_pulses, PulseWindows};
-use super::signal::{cumulative_integral, interpolate};
+use super::pulses::{detect_pulses, PulseWindows, SMOOTHING_S};
+use super::signal::{cumulative_integral, mean_std, moving_average};
 use crate::experiment::ShpbExperiment;
 use materials::limits::SIGNAL_SAMPLES;
 use std::path::Path;
@@ -59,21 +63,55 @@ pub struct ShpbAnalysis {
     pub equilibrium_ratio: Vec<f64>,
     pub pulses: PulseWindows,
     /// How the reflected and transmitted pulses were placed, and the shifts it added.
-    pub alignment: Alignment,
+    pub processing: Processing,
     pub shifts: Shifts,
     pub plateau: Plateau,
 }
 
-/// Process the raw record with its own alignment (`ShpbExperiment::alignment`).
-pub fn analyze(exp: &ShpbExperiment) -> Result<ShpbAnalysis, ShpbError> {
-    analyze_aligned(exp, exp.alignment)
+/// How the pulses are moved from the gauges to the specimen faces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Processing {
+    pub alignment: Alignment,
+    /// Pochhammer-Chree dispersion correction over the gauge distances.
+    pub dispersion: bool,
+    /// Savitzky-Golay filter of both gauge records, before any other step.
+    pub filter: Option<SavitzkyGolay>,
 }
 
-/// Process the raw record: baselines, pulses, time shift (`alignment`), wave analysis,
-/// plateau.
-pub fn analyze_aligned(
+impl Default for Processing {
+    /// Geometric alignment, no dispersion correction.
+    fn default() -> Processing {
+        Processing {
+            alignment: Alignment::Geometric,
+            dispersion: false,
+            filter: None,
+        }
+    }
+}
+
+impl std::fmt::Display for Processing {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}", self.alignment)?;
+        if self.dispersion {
+            f.write_str(" + dispersion")?;
+        }
+        match self.filter {
+            Some(sg) => write!(f, " + SG {}/{}", sg.window, sg.order),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Process the raw record as its TOML asks (`ShpbExperiment::processing`).
+pub fn analyze(exp: &ShpbExperiment) -> Result<ShpbAnalysis, ShpbError> {
+    analyze_with(exp, exp.processing)
+}
+
+/// Process the raw record: baselines, pulses, gauge signals at the faces
+/// (`processing`), wave analysis, plateau.
+pub fn analyze_with(
     exp: &ShpbExperiment,
-    alignment: Alignment,
+    processing: Processing,
 ) -> Result<ShpbAnalysis, ShpbError> {
     let pulses = detect_pulses(exp)?;
     let t = &exp.time_s;
@@ -89,25 +127,11 @@ pub fn analyze_aligned(
             source,
         })?;
     let face_times: Vec<f64> = (0..samples).map(|k| start + k as f64 * dt).collect();
-    let shifts = alignment::shifts(alignment, exp, &pulses, &face_times);
-    let (di, dtr) = (pulses.delay_incident_s, pulses.delay_transmitted_s);
-    let read = |values: &[f64], baseline: f64, shift: f64| -> Vec<f64> {
-        face_times
-            .iter()
-            .map(|&tf| -(interpolate(t, values, tf + shift) - baseline))
-            .collect()
-    };
-    let incident = read(&exp.incident, pulses.baseline_incident, -di);
-    let reflected = read(
-        &exp.incident,
-        pulses.baseline_incident,
-        di + shifts.reflected_s,
-    );
-    let transmitted = read(
-        &exp.transmitted,
-        pulses.baseline_transmitted,
-        dtr + shifts.transmitted_s,
-    );
+    let gauges = GaugeSignals::new(exp, &pulses, processing)?;
+    let shifts = alignment::shifts(processing.alignment, &gauges, &pulses, &face_times);
+    let incident = gauges.read(Pulse::Incident, &face_times, 0.0);
+    let reflected = gauges.read(Pulse::Reflected, &face_times, shifts.reflected_s);
+    let transmitted = gauges.read(Pulse::Transmitted, &face_times, shifts.transmitted_s);
 
     let bar = &exp.bar;
     let c0 = bar.wave_speed_m_per_s();
@@ -163,7 +187,7 @@ pub fn analyze_aligned(
         specimen_length_m,
         equilibrium_ratio,
         pulses,
-        alignment,
+        processing,
         shifts,
         plateau,
     })
@@ -175,6 +199,21 @@ impl ShpbAnalysis {
         let mut r = self.equilibrium_ratio[self.plateau.range.clone()].to_vec();
         r.sort_by(f64::total_cmp);
         r[r.len() / 2]
+    }
+
+    /// Oscillation of the front force F1 over the plateau: half the peak-to-peak of F1
+    /// (1 µs moving average, against electrical noise) about its least-squares quadratic
+    /// trend, relative to the plateau mean of F1 [-]. Pochhammer-Chree ringing of the
+    /// incident and reflected pulses shows here, the smooth hardening does not.
+    pub fn force_front_oscillation(&self) -> f64 {
+        let dt = self.time_s[1] - self.time_s[0];
+        let width = ((SMOOTHING_S / dt).round() as usize).max(1);
+        let f1 = &moving_average(&self.force_front_n, width)[self.plateau.range.clone()];
+        let trend = polynomial_trend(f1, 2);
+        let deviation = f1.iter().zip(&trend).map(|(f, t)| f - t);
+        let high = deviation.clone().fold(f64::NEG_INFINITY, f64::max);
+        let low = deviation.fold(f64::INFINITY, f64::min);
+        0.5 * (high - low) / mean_std(f1).0
     }
 
     /// Every history with a column name that states quantity, sign and unit.

@@ -45,6 +45,15 @@ pub enum ShpbError {
     },
     #[error("{name}: no strain-rate plateau: the strain rate never exceeds half its maximum for more than one sample")]
     NoPlateau { name: String },
+    #[error("{name}: the dispersion correction needs the bar's Poisson ratio (bar.poisson_ratio in the TOML)")]
+    NoPoissonRatio { name: String },
+    #[error("{name}: the dispersion correction needs uniform sampling: the interval after sample {sample} is {interval_s:.4e} s against the mean {mean_s:.4e} s")]
+    NonUniformSampling {
+        name: String,
+        sample: usize,
+        interval_s: f64,
+        mean_s: f64,
+    },
     #[error("{name}: {source}")]
     TooLarge {
         name: String,

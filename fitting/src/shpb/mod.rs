@@ -1,8 +1,10 @@
 //! Split-Hopkinson-Pressure-Bar signal processing (DESIGN 7.1): baseline removal, pulse
-//! detection, time shift of each pulse to the specimen faces (c0 = √(E_b/ρ_b) and the
-//! gauge distances, or calibrated delays; aligned geometrically, by measured arrival or
-//! by force balance), face velocities and forces, 1-, 2- and 3-wave stress, strain rate,
-//! strain, true stress and strain, equilibrium ratio, and the strain-rate plateau.
+//! detection, optional Savitzky-Golay filtering, time shift of each pulse to the specimen
+//! faces (c0 = √(E_b/ρ_b) and the gauge distances, or calibrated delays; optionally with
+//! the Pochhammer-Chree dispersion of that travel; aligned geometrically, by measured
+//! arrival or by force balance), face velocities and forces, 1-, 2- and 3-wave stress,
+//! strain rate, strain, true stress and strain, equilibrium ratio, and the strain-rate
+//! plateau.
 //!
 //! Inputs are raw gauge strains as recorded (compression negative); every output is
 //! compression positive. [`analyze`] is the entry point; the relative face velocity and
@@ -12,6 +14,8 @@ pub mod alignment;
 mod analysis;
 pub mod dispersion;
 mod error;
+pub mod filter;
+mod gauges;
 mod plateau;
 pub(crate) mod pulses;
 pub(crate) mod signal;
@@ -19,8 +23,11 @@ pub mod synthetic;
 mod verify;
 
 pub use alignment::{Alignment, Shifts};
-pub use analysis::{analyze, analyze_aligned, ShpbAnalysis};
+pub use analysis::{analyze, analyze_with, Processing, ShpbAnalysis};
 pub use error::ShpbError;
 pub use plateau::Plateau;
 pub use pulses::{detect_pulses, PulseWindows};
-pub use verify::{record_with_late_gauges, synthetic_round_trip, verify_cases, RoundTrip};
+pub use verify::{
+    record_with_late_gauges, synthetic_round_trip, synthetic_round_trip_with, verify_cases,
+    RoundTrip,
+};

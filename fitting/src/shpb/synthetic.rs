@@ -6,10 +6,13 @@
 //! dε/dt = c0 (ε_i − ε_r − ε_t)/L_s = 2 c0 (ε_i − ε_t)/L_s (integrated by RK4 at a
 //! quarter of the sampling interval). A trapezoidal incident pulse ε_i(t) drives it.
 //! The face strains are delayed to the gauges (d_i/c0, d_t/c0, or the bar's calibrated
-//! delays), turned to the recorded
-//! sign (compression negative), offset by a baseline and given uniform noise from a
-//! seeded generator.
+//! delays), turned to the recorded sign (compression negative), offset by a baseline and
+//! given uniform noise from a seeded generator. With `dispersed` the waves also disperse
+//! on their way (`shpb::dispersion`): the trapezoid is recorded at the incident gauge
+//! and reaches the specimen dispersed over d_i, and the reflected and transmitted face
+//! pulses disperse over d_i and d_t on their way to the gauges.
 
+use super::dispersion::{correct, PhaseVelocity};
 use super::signal::interpolate;
 use crate::experiment::{Bar, ShpbExperiment, Specimen};
 use rand::{Rng, SeedableRng};
@@ -98,6 +101,9 @@ pub struct SyntheticSetup {
     /// Baselines added to the incident and transmitted records [strain].
     pub baseline_incident: f64,
     pub baseline_transmitted: f64,
+    /// Whether the pulses disperse between faces and gauges (needs the bar's Poisson
+    /// ratio).
+    pub dispersed: bool,
     /// Noise: uniform in ± this [strain].
     pub noise: f64,
     pub seed: u64,
@@ -118,6 +124,7 @@ impl SyntheticSetup {
                 transmitted_gauge_to_specimen_m: 0.770,
                 incident_delay_calibrated_s: None,
                 transmitted_delay_calibrated_s: None,
+                poisson_ratio: Some(0.29),
             },
             specimen: Specimen {
                 diameter_m: 0.008,
@@ -139,6 +146,7 @@ impl SyntheticSetup {
             pre_trigger_s: 60e-6,
             baseline_incident: 30e-6,
             baseline_transmitted: -20e-6,
+            dispersed: false,
             noise: 2e-6,
             seed,
         }
@@ -165,16 +173,29 @@ impl SyntheticShpb {
         let to_bar_strain = setup.specimen.area_m2() / (bar.elastic_modulus_pa * bar.area_m2());
         let pulse = setup.pulse;
         let curve = setup.curve;
+        let dispersion = setup.dispersed.then(|| {
+            let nu = bar
+                .poisson_ratio
+                .expect("a dispersed synthetic record needs the bar's Poisson ratio");
+            PhaseVelocity::new(c0, 0.5 * bar.diameter_m, nu)
+        });
 
         // Specimen history, for the pulse and 30 µs of unloading after it.
         let h = setup.sampling_s / 4.0;
         let steps = ((pulse.duration_s() + 30e-6) / h).ceil() as usize;
+        let grid: Vec<f64> = (0..=steps + 1).map(|k| k as f64 * h).collect();
+        let trapezoid: Vec<f64> = grid.iter().map(|&t| pulse.at(t)).collect();
+        let incident_at_face = match &dispersion {
+            Some(phase) => correct(&trapezoid, h, bar.incident_gauge_to_specimen_m, phase),
+            None => trapezoid,
+        };
+        let incident_face = |t: f64| interpolate(&grid, &incident_at_face, t);
         let (mut time_s, mut strain, mut stress_pa) = (vec![0.0], vec![0.0], vec![0.0]);
         let mut plastic = 0.0;
         for k in 0..steps {
             let (t, e) = (k as f64 * h, strain[k]);
             let rate = |t: f64, e: f64| {
-                rate_factor * (pulse.at(t) - to_bar_strain * curve.update(e, plastic).0)
+                rate_factor * (incident_face(t) - to_bar_strain * curve.update(e, plastic).0)
             };
             let k1 = rate(t, e);
             let k2 = rate(t + 0.5 * h, e + 0.5 * h * k1);
@@ -191,7 +212,7 @@ impl SyntheticShpb {
         let reflected: Vec<f64> = time_s
             .iter()
             .zip(&transmitted)
-            .map(|(&t, et)| et - pulse.at(t))
+            .map(|(&t, et)| et - incident_face(t))
             .collect();
         let last = *time_s.last().unwrap();
         let face = |values: &[f64], t: f64| {
@@ -206,19 +227,40 @@ impl SyntheticShpb {
         let di = bar.incident_delay_s();
         let dtr = bar.transmitted_delay_s();
         let load_start_s = setup.pre_trigger_s + di;
-        let end = load_start_s + last + di.max(dtr) + 20e-6;
+        // the record runs 20 µs past the last pulse, and with dispersion as long again as
+        // the slowest waves lag behind
+        let tail = if setup.dispersed { 220e-6 } else { 20e-6 };
+        let end = load_start_s + last + di.max(dtr) + tail;
         let samples = (end / setup.sampling_s).ceil() as usize;
+        let record_time: Vec<f64> = (0..samples).map(|j| j as f64 * setup.sampling_s).collect();
+        // a face pulse read at the gauge `distance` [m] away, dispersed on its way if asked
+        let at_gauge = |f: &dyn Fn(f64) -> f64, distance: f64| -> Vec<f64> {
+            let clean: Vec<f64> = record_time.iter().map(|&t| f(t - load_start_s)).collect();
+            match &dispersion {
+                Some(phase) => correct(&clean, setup.sampling_s, distance, phase),
+                None => clean,
+            }
+        };
+        let incident_part: Vec<f64> = record_time
+            .iter()
+            .map(|&t| pulse.at(t - load_start_s + di))
+            .collect();
+        let reflected_part = at_gauge(
+            &|tf| face(&reflected, tf - di),
+            bar.incident_gauge_to_specimen_m,
+        );
+        let transmitted_part = at_gauge(
+            &|tf| face(&transmitted, tf - dtr),
+            bar.transmitted_gauge_to_specimen_m,
+        );
         let mut rng = Pcg64::seed_from_u64(setup.seed);
         let mut noise = || rng.gen_range(-setup.noise..=setup.noise);
-        let record_time: Vec<f64> = (0..samples).map(|j| j as f64 * setup.sampling_s).collect();
         let mut incident = Vec::with_capacity(samples);
         let mut transmitted_gauge = Vec::with_capacity(samples);
-        for &t in &record_time {
-            let tf = t - load_start_s;
-            let inc = pulse.at(tf + di) + face(&reflected, tf - di);
-            incident.push(-inc + setup.baseline_incident + noise());
-            transmitted_gauge
-                .push(-face(&transmitted, tf - dtr) + setup.baseline_transmitted + noise());
+        for j in 0..samples {
+            incident
+                .push(-(incident_part[j] + reflected_part[j]) + setup.baseline_incident + noise());
+            transmitted_gauge.push(-transmitted_part[j] + setup.baseline_transmitted + noise());
         }
         SyntheticShpb {
             experiment: ShpbExperiment {
@@ -230,7 +272,7 @@ impl SyntheticShpb {
                 time_s: record_time,
                 incident,
                 transmitted: transmitted_gauge,
-                alignment: crate::shpb::Alignment::Geometric,
+                processing: crate::shpb::Processing::default(),
                 notes: Vec::new(),
             },
             load_start_s,
