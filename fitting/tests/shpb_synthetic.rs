@@ -207,3 +207,26 @@ fn dispersion_correction_recovers_a_dispersed_record() {
     assert!(u.stress_error_3wave > 0.05, "{}", u.stress_error_3wave);
     assert!(u.analysis.median_equilibrium_ratio() > 5.0 * c.analysis.median_equilibrium_ratio());
 }
+
+/// Honest windows: the steel-like specimen under the flat pulse holds its rate (94 % of
+/// the loading phase within ±15 % of the plateau rate); a stiffly hardening one
+/// (σ = 200 MPa + 6 GPa ε_p) does not: its rate falls from about 3070 to 2040 1/s as the
+/// stress rises, 43 % of the loading phase is in the band, and the processing says there
+/// is no constant-rate plateau (under the 50 % that a constant rate needs).
+#[test]
+fn a_hardening_specimen_has_no_constant_rate_plateau() {
+    let steel = synthetic_round_trip(&SyntheticSetup::steel_945_like(1)).unwrap();
+    assert!(steel.analysis.plateau.is_constant_rate());
+    let mut setup = SyntheticSetup::steel_945_like(1);
+    setup.curve.yield_stress_pa = 200e6;
+    setup.curve.hardening_pa = 6e9;
+    setup.curve.exponent = 1.0;
+    let hardening = synthetic_round_trip(&setup).unwrap();
+    let p = &hardening.analysis.plateau;
+    println!(
+        "steel in band {:.3}; hardening in band {:.3}, trend {:?}",
+        steel.analysis.plateau.in_band_fraction, p.in_band_fraction, p.rate_trend_per_s
+    );
+    assert!(!p.is_constant_rate(), "{}", p.in_band_fraction);
+    assert!(p.rate_change() < -0.25, "{}", p.rate_change());
+}

@@ -1,13 +1,19 @@
 //! `mpw shpb EXPERIMENT.toml|FOLDER [--out DIR]`: process an SHPB record; write the face
 //! histories as CSV (`shpb.csv`, compression positive, units in the column names), charts
-//! of the pulses, forces, strain rate and stress-strain curve, and print a summary. A
-//! folder processes every SHPB TOML in it (sorted by name), each into its own subfolder,
-//! and writes one table of all (`summary.csv`, also printed): plateau rate, final strain,
-//! true flow stress at fixed true strains, median equilibrium ratio over the plateau. A
-//! record that cannot be processed is listed with its error; the run then exits 1.
+//! of the pulses, forces, strain rate, stress-strain curve and equilibrium ratio, and
+//! print a summary: whether the test held a constant rate, the histories across the
+//! plateau, and every processing's shifts, equilibrium and F1 oscillation. A folder
+//! processes every SHPB TOML in it (sorted by name), each into its own subfolder, and
+//! writes one table of all (`summary.csv`, also printed): plateau rate, final strain,
+//! true flow stress at fixed true strains, median equilibrium ratio over the plateau, rate
+//! trend and the constant-rate verdict. A record that cannot be processed is listed with
+//! its error; the run then exits 1.
 
 use crate::chart::{LineChart, Series};
 use crate::experiment::ShpbExperiment;
+use crate::shpb::plateau::{MIN_IN_BAND, TOLERANCE as PLATEAU_TOLERANCE};
+use crate::shpb::pulses::SMOOTHING_S;
+use crate::shpb::signal::moving_average;
 use crate::shpb::{analyze, analyze_with, Alignment, Processing, ShpbAnalysis};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
@@ -66,7 +72,7 @@ fn run_folder(folder: &Path, out: &Path) -> Result<()> {
         .map(|e| format!("true_stress_at_{e}_mpa"))
         .collect();
     let mut csv = format!(
-        "record,plateau_rate_per_s,final_strain,{},median_r,error\n",
+        "record,plateau_rate_per_s,final_strain,{},median_r,rate_trend_start_per_s,rate_trend_end_per_s,in_band_fraction,constant_rate,error\n",
         strains.join(",")
     );
     let head: String = TABLE_STRAINS
@@ -74,8 +80,8 @@ fn run_folder(folder: &Path, out: &Path) -> Result<()> {
         .map(|e| format!(" {:>12}", format!("σ({e:.2}) MPa")))
         .collect();
     println!(
-        "{:<12} {:>10} {:>8}{head} {:>9}",
-        "record", "rate 1/s", "ε final", "median R"
+        "{:<12} {:>10} {:>8}{head} {:>9} {:>16} {:>8}",
+        "record", "rate 1/s", "ε final", "median R", "trend 1/s", "in band"
     );
     let mut failed = 0;
     for file in &files {
@@ -92,9 +98,19 @@ fn run_folder(folder: &Path, out: &Path) -> Result<()> {
                     .iter()
                     .map(|s| format!(" {:>12}", fixed(*s, 1)))
                     .collect();
+                let q = &a.plateau;
                 println!(
-                    "{stem:<12} {:>10.1} {:>8.4}{cells} {:>9.3}",
-                    row.rate, row.final_strain, row.median_r
+                    "{stem:<12} {:>10.1} {:>8.4}{cells} {:>9.3} {:>16} {:>7.0}%{}",
+                    row.rate,
+                    row.final_strain,
+                    row.median_r,
+                    format!("{:.0} -> {:.0}", q.rate_trend_per_s.0, q.rate_trend_per_s.1),
+                    100.0 * q.in_band_fraction,
+                    if q.is_constant_rate() {
+                        ""
+                    } else {
+                        " no constant-rate plateau"
+                    }
                 );
                 let stresses: Vec<String> = row
                     .stress_mpa
@@ -102,25 +118,29 @@ fn run_folder(folder: &Path, out: &Path) -> Result<()> {
                     .map(|s| s.map_or(String::new(), |v| format!("{v}")))
                     .collect();
                 csv += &format!(
-                    "{stem},{},{},{},{},\n",
+                    "{stem},{},{},{},{},{},{},{},{},\n",
                     row.rate,
                     row.final_strain,
                     stresses.join(","),
-                    row.median_r
+                    row.median_r,
+                    a.plateau.rate_trend_per_s.0,
+                    a.plateau.rate_trend_per_s.1,
+                    a.plateau.in_band_fraction,
+                    a.plateau.is_constant_rate()
                 );
             }
             Err(e) => {
                 failed += 1;
                 println!("{stem:<12} failed: {e:#}");
                 csv += &format!(
-                    "{stem},,,{},,\"{}\"\n",
+                    "{stem},,,{},,,,,,\"{}\"\n",
                     ",".repeat(TABLE_STRAINS.len() - 1),
                     format!("{e:#}").replace('"', "'")
                 );
             }
         }
     }
-    println!("R: equilibrium ratio 2|F1 − F2|/|F1 + F2|, median over the plateau; σ: true 3-wave stress at that true strain on loading (- if not reached)");
+    println!("R: equilibrium ratio 2|F1 − F2|/|F1 + F2|, median over the plateau; σ: true 3-wave stress at that true strain on loading (- if not reached); trend: least-squares line through the rate across the plateau, start -> end; in band: share of the loading phase within ±{:.0} % of the plateau rate ({:.0} % needed for a constant-rate plateau)", 100.0 * PLATEAU_TOLERANCE, 100.0 * MIN_IN_BAND);
     std::fs::write(out.join("summary.csv"), csv)?;
     println!(
         "wrote {}/summary.csv and one folder per record",
@@ -301,6 +321,20 @@ fn charts(a: &ShpbAnalysis, out: &Path) -> Result<()> {
         1e-6,
     ))
     .write_png(&out.join("stress_strain.png"))?;
+    let on = a.plateau.range.clone();
+    LineChart::new(
+        format!("{}: equilibrium over the plateau", a.name),
+        face,
+        "R = 2|F1 − F2| / |F1 + F2| [-]",
+    )
+    .with(Series::scaled(
+        "R",
+        &t[on.clone()],
+        &a.equilibrium_ratio[on],
+        us,
+        1.0,
+    ))
+    .write_png(&out.join("equilibrium.png"))?;
     Ok(())
 }
 
@@ -339,8 +373,13 @@ fn summary(exp: &ShpbExperiment, a: &ShpbAnalysis) {
         p.reflected_arrival_offset_s * 1e6,
         p.transmitted_arrival_offset_s * 1e6
     );
+    let (label, caveat) = if q.is_constant_rate() {
+        ("plateau", "")
+    } else {
+        ("window", " (means over a changing rate)")
+    };
     println!(
-        "  plateau {:.1} .. {:.1} µs (strain {:.4} .. {:.4}): strain rate {:.1} 1/s (3-wave), {:.1} 1/s (1-wave)",
+        "  {label} {:.1} .. {:.1} µs (strain {:.4} .. {:.4}): strain rate {:.1} 1/s (3-wave), {:.1} 1/s (1-wave){caveat}",
         q.range.start as f64 * dt * 1e6,
         (q.range.end - 1) as f64 * dt * 1e6,
         a.strain[q.range.start],
@@ -349,8 +388,50 @@ fn summary(exp: &ShpbExperiment, a: &ShpbAnalysis) {
         q.strain_rate_1wave_per_s
     );
     println!(
-        "  plateau stress (3-wave, engineering) {:.1} MPa, mean equilibrium ratio R = 2|F1 − F2|/|F1 + F2| {:.3}",
+        "  {label} stress (3-wave, engineering) {:.1} MPa, equilibrium ratio R = 2|F1 − F2|/|F1 + F2| median {:.3}, mean {:.3}",
         q.stress_3wave_pa / 1e6,
+        a.median_equilibrium_ratio(),
         q.equilibrium_ratio
     );
+    let verdict = if q.is_constant_rate() {
+        "a constant-rate plateau"
+    } else {
+        "NO constant-rate plateau: read the histories, not the means"
+    };
+    println!(
+        "  {:.0} % of the loading phase within ±{:.0} % of {:.1} 1/s (at least {:.0} % needed): {verdict}; rate trend across the {label} {:.1} -> {:.1} 1/s ({:+.0} %)",
+        100.0 * q.in_band_fraction,
+        100.0 * PLATEAU_TOLERANCE,
+        q.median_rate_per_s,
+        100.0 * MIN_IN_BAND,
+        q.rate_trend_per_s.0,
+        q.rate_trend_per_s.1,
+        100.0 * q.rate_change()
+    );
+    histories(a);
+}
+
+/// Rate, strain, stress and equilibrium across the plateau (or window) at every tenth of
+/// it, on the 1 µs averages: the time-resolved account of the test.
+fn histories(a: &ShpbAnalysis) {
+    let range = a.plateau.range.clone();
+    let width = ((SMOOTHING_S / (a.time_s[1] - a.time_s[0])).round() as usize).max(1);
+    let [rate, stress, ratio] = [
+        &a.strain_rate_3wave_per_s,
+        &a.true_stress_pa,
+        &a.equilibrium_ratio,
+    ]
+    .map(|v| moving_average(v, width));
+    println!("     t µs   rate 1/s   true ε   true σ MPa       R");
+    for tenth in 0..=10 {
+        let k = range.start + tenth * (range.len() - 1) / 10;
+        println!(
+            "  {:>7.1} {:>10.1} {:>8.4} {:>12.1} {:>7.3}",
+            a.time_s[k] * 1e6,
+            rate[k],
+            a.true_strain[k],
+            stress[k] / 1e6,
+            ratio[k]
+        );
+    }
 }

@@ -16,7 +16,7 @@ pub mod dispersion;
 mod error;
 pub mod filter;
 mod gauges;
-mod plateau;
+pub(crate) mod plateau;
 pub(crate) mod pulses;
 pub(crate) mod signal;
 pub mod synthetic;

@@ -3,14 +3,27 @@
 //! On the 1 µs moving average of the 3-wave strain rate, the loading phase is where it
 //! exceeds half its maximum; its median there is the plateau rate m. The plateau runs
 //! from the first to the last sample of the loading phase within ±15 % of m.
+//!
+//! Whether the rate is constant there is a result, not an assumption. The plateau holds
+//! a constant rate when at least `MIN_IN_BAND` of the loading phase lies within the band
+//! (`in_band_fraction`). A rate that falls linearly through the loading phase to half its
+//! peak (a hardening specimen under a flat pulse) spends 45 % of it in the band, and a
+//! mean rate or stress over the window then describes nothing: the report says so and
+//! gives the histories.
+//! The least-squares line through the averaged rate over the plateau gives its rate at
+//! the start and the end (`rate_trend_per_s`), reported either way.
 
 use super::error::ShpbError;
+use super::filter::polynomial_trend;
 use super::pulses::SMOOTHING_S;
 use super::signal::moving_average;
 use std::ops::Range;
 
 /// Relative band around the median rate that counts as plateau.
-const TOLERANCE: f64 = 0.15;
+pub const TOLERANCE: f64 = 0.15;
+/// Smallest fraction of the loading phase within the band for a constant-rate test:
+/// above the 45 % of a linear fall to half the peak rate.
+pub const MIN_IN_BAND: f64 = 0.5;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Plateau {
@@ -24,6 +37,14 @@ pub struct Plateau {
     pub stress_3wave_pa: f64,
     /// Mean equilibrium ratio R on the plateau [-].
     pub equilibrium_ratio: f64,
+    /// Least-squares line through the averaged 3-wave rate over the plateau, at its first
+    /// and last sample [1/s].
+    pub rate_trend_per_s: (f64, f64),
+    /// Median m of the averaged 3-wave rate over the loading phase [1/s].
+    pub median_rate_per_s: f64,
+    /// Fraction of the loading phase (rate above half its maximum) within ±`TOLERANCE`
+    /// of the plateau rate m [-].
+    pub in_band_fraction: f64,
 }
 
 impl Plateau {
@@ -53,6 +74,7 @@ impl Plateau {
         let median = loading[loading.len() / 2];
         let on =
             |k: usize| smooth[k] >= 0.5 * max && (smooth[k] - median).abs() <= TOLERANCE * median;
+        let in_band_fraction = (0..n).filter(|&k| on(k)).count() as f64 / loading.len() as f64;
         let first = (0..n).find(|&k| on(k)).ok_or_else(no_plateau)?;
         let last = (0..n).rev().find(|&k| on(k)).ok_or_else(no_plateau)?;
         if last <= first {
@@ -60,13 +82,31 @@ impl Plateau {
         }
         let range = first..last + 1;
         let mean = |v: &[f64]| v[range.clone()].iter().sum::<f64>() / range.len() as f64;
+        let trend = polynomial_trend(&smooth[range.clone()], 1);
         Ok(Plateau {
+            rate_trend_per_s: (trend[0], trend[trend.len() - 1]),
+            in_band_fraction,
+            median_rate_per_s: median,
             strain_rate_3wave_per_s: mean(rate_3wave),
             strain_rate_1wave_per_s: mean(rate_1wave),
             stress_3wave_pa: mean(stress_3wave),
             equilibrium_ratio: mean(ratio),
             range,
         })
+    }
+}
+
+impl Plateau {
+    /// Change of the trend rate across the plateau, relative to the mean rate [-].
+    pub fn rate_change(&self) -> f64 {
+        let (start, end) = self.rate_trend_per_s;
+        (end - start) / self.strain_rate_3wave_per_s
+    }
+
+    /// Whether the test held a constant rate: at least `MIN_IN_BAND` of its loading phase
+    /// within the band.
+    pub fn is_constant_rate(&self) -> bool {
+        self.in_band_fraction >= MIN_IN_BAND
     }
 }
 
@@ -113,5 +153,45 @@ mod tests {
             p.strain_rate_3wave_per_s
         );
         assert_eq!(p.stress_3wave_pa, 5e8);
+        // the flat top and the ramps above 850/s are in the band: 83 of the 90 µs above
+        // half the maximum
+        assert!(
+            (p.in_band_fraction - 83.0 / 90.0).abs() < 0.01,
+            "{}",
+            p.in_band_fraction
+        );
+        assert!(p.is_constant_rate());
+    }
+
+    /// A rate that falls linearly from 5300 to 2000 1/s over 22 µs (the copper record of
+    /// issue 12) has no constant-rate plateau: the loading phase runs 5300 → 2650 1/s
+    /// around the median 3975, and the ±15 % band holds 1192/2650 = 45 % of it. The
+    /// trend of a line is the line itself.
+    #[test]
+    fn a_falling_rate_has_no_plateau() {
+        let dt = 1e-7;
+        let time: Vec<f64> = (0..=220).map(|k| k as f64 * dt).collect();
+        let rate: Vec<f64> = time.iter().map(|&t| 5300.0 - 3300.0 * t / 22e-6).collect();
+        let zeros = vec![0.0; time.len()];
+        let p = Plateau::find("ramp", &time, &rate, &rate, &zeros, &zeros).unwrap();
+        let at = |k: usize| 5300.0 - 3300.0 * k as f64 * dt / 22e-6;
+        // the 1 µs average of a line is the line, except near the ends where it is cut
+        let (first, last) = (p.range.start + 5, p.range.end - 6);
+        assert!(
+            p.rate_trend_per_s.0 > at(first) - 1.0,
+            "{:?}",
+            p.rate_trend_per_s
+        );
+        assert!(
+            p.rate_trend_per_s.1 < at(last) + 1.0,
+            "{:?}",
+            p.rate_trend_per_s
+        );
+        assert!(
+            (p.in_band_fraction - 0.45).abs() < 0.02,
+            "{}",
+            p.in_band_fraction
+        );
+        assert!(!p.is_constant_rate());
     }
 }
