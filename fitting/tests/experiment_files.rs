@@ -670,3 +670,51 @@ fn shpb_bar_wave_speed_is_checked() {
     let steel = ShpbExperiment::load(&dir.join("steel.toml")).unwrap();
     assert!((steel.bar.wave_speed_m_per_s() - (200e9f64 / 7850.0).sqrt()).abs() < 1e-9);
 }
+
+/// A CSV whose `#` header holds the bar and specimen metadata needs a TOML of columns
+/// only; the TOML overrides the header; a missing key names both places, a bad header
+/// value its line, and the wave-speed check reaches header values too.
+#[test]
+fn shpb_metadata_from_the_csv_header() {
+    let header =
+        "# temperature: 293 K\n# bar_elastic_modulus: 200 GPa\n# bar_density: 8000 kg/m^3\n\
+# bar_diameter: 20 mm\n# bar_incident_gauge_to_specimen: 1 m\n\
+# bar_transmitted_gauge_to_specimen: 0.5 m\n# bar_poisson_ratio: 0.29\n\
+# specimen_diameter: 8 mm\n# specimen_length: 4 mm\n";
+    let csv = format!("{header}t_us,inc_ue,tr_ue\n0,-100,-50\n1,200,25\n");
+    let toml = "kind = \"shpb\"\ndata = \"s.csv\"\n[columns]\n\
+time = { name = \"t_us\", unit = \"us\" }\n\
+incident = { name = \"inc_ue\", unit = \"microstrain\" }\n\
+transmitted = { name = \"tr_ue\", unit = \"microstrain\" }\n";
+    let overriding = toml.replace("[columns]", "[specimen]\nlength = \"5 mm\"\n[columns]");
+    let dir = folder(
+        "shpb_header",
+        &[
+            ("s.csv", &csv),
+            ("a.toml", toml),
+            ("b.toml", &overriding),
+            ("m.csv", &csv.replace("# specimen_length: 4 mm\n", "")),
+            ("m.toml", &toml.replace("s.csv", "m.csv")),
+            ("g.csv", &csv.replace("8000 kg/m^3", "8 kg/m^3")),
+            ("g.toml", &toml.replace("s.csv", "g.csv")),
+        ],
+    );
+    let a = ShpbExperiment::load(&dir.join("a.toml")).unwrap();
+    assert!((a.bar.wave_speed_m_per_s() - 5000.0).abs() < 1e-9);
+    assert_eq!(a.bar.poisson_ratio, Some(0.29));
+    assert!((a.bar.incident_gauge_to_specimen_m - 1.0).abs() < 1e-15);
+    assert!((a.specimen.length_m - 4e-3).abs() < 1e-15);
+    assert!((a.temperature_k - 293.0).abs() < 1e-12);
+    let b = ShpbExperiment::load(&dir.join("b.toml")).unwrap();
+    assert!((b.specimen.length_m - 5e-3).abs() < 1e-15);
+    let e = ShpbExperiment::load(&dir.join("m.toml")).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::MissingMetadata { key, header_keys, .. } if key == "specimen.length" && header_keys.contains("specimen_length")),
+        "{e}"
+    );
+    let e = ShpbExperiment::load(&dir.join("g.toml")).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::BadHeader { line: 3, key, problem, .. } if key == "bar_density" && problem.contains("g/cm³")),
+        "{e}"
+    );
+}

@@ -15,10 +15,10 @@ use super::units::{parse_quantity, Dimension};
 use std::fmt;
 
 /// (header key, unit of its plain-number value; "" when the value is a quantity string).
-type HeaderKey = (&'static str, &'static str);
+pub type HeaderKey<'a> = (&'a str, &'a str);
 
 /// Header keys of a test temperature, in the order they are looked for.
-pub const TEMPERATURE_KEYS: &[HeaderKey] = &[
+pub const TEMPERATURE_KEYS: &[HeaderKey<'static>] = &[
     ("temperature_K", "K"),
     ("temperature_C", "°C"),
     ("temperature_degC", "°C"),
@@ -26,7 +26,7 @@ pub const TEMPERATURE_KEYS: &[HeaderKey] = &[
 ];
 
 /// Header keys of a nominal strain rate, in the order they are looked for.
-pub const STRAIN_RATE_KEYS: &[HeaderKey] = &[
+pub const STRAIN_RATE_KEYS: &[HeaderKey<'static>] = &[
     ("nominal_engineering_strain_rate_per_s", "1/s"),
     ("nominal_strain_rate_per_s", "1/s"),
     ("strain_rate_per_s", "1/s"),

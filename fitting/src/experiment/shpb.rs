@@ -31,6 +31,11 @@
 //! diameter = "8 mm"
 //! length = "4 mm"
 //! ```
+//! Every `[bar]` and `[specimen]` key and `temperature` may instead sit in the CSV's `#`
+//! header under the same name with `_` for `.` (`# bar_diameter: 20 mm`,
+//! `# specimen_length: 4 mm`, `# bar_poisson_ratio: 0.29`, `# temperature: 293 K`); the
+//! TOML overrides the header.
+//!
 //! A record in the LANL standard raw format (`lanl_raw`) needs only a short TOML; the
 //! file states bars, gauges, gains, specimen and temperature, but not the bridge:
 //! ```toml
@@ -45,6 +50,7 @@
 //! polarity is checked by the processing (`shpb::pulses`).
 
 use super::error::ExperimentError;
+use super::header::{self, Source};
 use super::lanl_raw::RawRecord;
 use super::sidecar::{ColumnSpec, Sidecar};
 use super::table::CsvTable;
@@ -53,6 +59,7 @@ use crate::shpb::filter::SavitzkyGolay;
 use crate::shpb::{Alignment, Processing};
 use serde::Deserialize;
 use std::f64::consts::PI;
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
@@ -64,13 +71,15 @@ struct ShpbFile {
     kind: Spanned<String>,
     name: Option<String>,
     data: Spanned<String>,
-    temperature: Spanned<String>,
+    temperature: Option<Spanned<String>>,
     polarity: Option<Spanned<String>>,
     alignment: Option<Spanned<String>>,
     dispersion: Option<Spanned<bool>>,
     savitzky_golay: Option<Spanned<FilterSpec>>,
     columns: ShpbColumns,
+    #[serde(default)]
     bar: BarSpec,
+    #[serde(default)]
     specimen: SpecimenSpec,
 }
 
@@ -127,25 +136,25 @@ struct GaugeColumnSpec {
     active_arms: Option<Spanned<u32>>,
 }
 
-#[derive(Deserialize)]
+#[derive(Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 struct BarSpec {
-    elastic_modulus: Spanned<String>,
+    elastic_modulus: Option<Spanned<String>>,
     density: Option<Spanned<String>>,
     wave_speed: Option<Spanned<String>>,
-    diameter: Spanned<String>,
-    incident_gauge_to_specimen: Spanned<String>,
-    transmitted_gauge_to_specimen: Spanned<String>,
+    diameter: Option<Spanned<String>>,
+    incident_gauge_to_specimen: Option<Spanned<String>>,
+    transmitted_gauge_to_specimen: Option<Spanned<String>>,
     incident_gauge_delay: Option<Spanned<String>>,
     transmitted_gauge_delay: Option<Spanned<String>>,
     poisson_ratio: Option<Spanned<f64>>,
 }
 
-#[derive(Deserialize)]
+#[derive(Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 struct SpecimenSpec {
-    diameter: Spanned<String>,
-    length: Spanned<String>,
+    diameter: Option<Spanned<String>>,
+    length: Option<Spanned<String>>,
 }
 
 /// Wave speeds of SHPB bars, from polymer (PMMA ≈ 2000 m/s, nylon lower) to steel and
@@ -283,87 +292,30 @@ impl ShpbExperiment {
             }
         }
         let spec: ShpbFile = sidecar.parse_kind("shpb")?;
-        let temperature_k =
-            sidecar.positive("temperature", &spec.temperature, Dimension::Temperature)?;
-        let b = &spec.bar;
-        let elastic_modulus_pa = sidecar.positive(
-            "bar.elastic_modulus",
-            &b.elastic_modulus,
-            Dimension::Modulus,
-        )?;
-        let density_kg_m3 = match (&b.density, &b.wave_speed) {
-            (Some(rho), None) => sidecar.positive("bar.density", rho, Dimension::Density)?,
-            (None, Some(c0)) => {
-                let c0 = sidecar.positive("bar.wave_speed", c0, Dimension::Velocity)?;
-                elastic_modulus_pa / (c0 * c0)
-            }
-            _ => {
-                return Err(sidecar.invalid(
-                    "bar.elastic_modulus",
-                    b.elastic_modulus.span(),
-                    "the bar needs exactly one of `density` and `wave_speed`",
-                ))
-            }
+        let sign = polarity_sign(&sidecar, spec.polarity.as_ref())?;
+        let data_file = sidecar.relative_path(spec.data.get_ref());
+        let table = CsvTable::read_rows(&data_file, 2)?;
+        let temperature_k = sidecar
+            .metadata(
+                &table,
+                ("temperature", spec.temperature.as_ref()),
+                header::TEMPERATURE_KEYS,
+                Dimension::Temperature,
+            )?
+            .0;
+        let meta = Metadata {
+            sidecar: &sidecar,
+            table: &table,
         };
-        let bar = Bar {
-            elastic_modulus_pa,
-            density_kg_m3,
-            diameter_m: sidecar.positive("bar.diameter", &b.diameter, Dimension::Length)?,
-            incident_gauge_to_specimen_m: sidecar.positive(
-                "bar.incident_gauge_to_specimen",
-                &b.incident_gauge_to_specimen,
-                Dimension::Length,
-            )?,
-            transmitted_gauge_to_specimen_m: sidecar.positive(
-                "bar.transmitted_gauge_to_specimen",
-                &b.transmitted_gauge_to_specimen,
-                Dimension::Length,
-            )?,
-            incident_delay_calibrated_s: b
-                .incident_gauge_delay
-                .as_ref()
-                .map(|d| sidecar.positive("bar.incident_gauge_delay", d, Dimension::Time))
-                .transpose()?,
-            transmitted_delay_calibrated_s: b
-                .transmitted_gauge_delay
-                .as_ref()
-                .map(|d| sidecar.positive("bar.transmitted_gauge_delay", d, Dimension::Time))
-                .transpose()?,
-            poisson_ratio: b
-                .poisson_ratio
-                .as_ref()
-                .map(|nu| poisson_ratio(&sidecar, nu))
-                .transpose()?,
-        };
-        bar.check_wave_speed(b.density.is_some())
-            .map_err(|problem| {
-                let key = if b.density.is_some() {
-                    "bar.density"
-                } else {
-                    "bar.wave_speed"
-                };
-                let span = b
-                    .density
-                    .as_ref()
-                    .or(b.wave_speed.as_ref())
-                    .map_or(b.elastic_modulus.span(), |v| v.span());
-                sidecar.invalid(key, span, problem)
-            })?;
+        let bar = meta.bar(&spec.bar)?;
         let specimen = Specimen {
-            diameter_m: sidecar.positive(
+            diameter_m: meta.required(
                 "specimen.diameter",
                 &spec.specimen.diameter,
                 Dimension::Length,
             )?,
-            length_m: sidecar.positive(
-                "specimen.length",
-                &spec.specimen.length,
-                Dimension::Length,
-            )?,
+            length_m: meta.required("specimen.length", &spec.specimen.length, Dimension::Length)?,
         };
-        let sign = polarity_sign(&sidecar, spec.polarity.as_ref())?;
-        let data_file = sidecar.relative_path(spec.data.get_ref());
-        let table = CsvTable::read_rows(&data_file, 2)?;
         let time_s = sidecar.column(&table, "columns.time", &spec.columns.time, Dimension::Time)?;
         sidecar.check_time_increases(&table, &spec.columns.time, &time_s)?;
         let flip = |v: Vec<f64>| -> Vec<f64> { v.into_iter().map(|x| sign * x).collect() };
@@ -399,6 +351,162 @@ impl ShpbExperiment {
             bar,
             notes: Vec::new(),
         })
+    }
+}
+
+/// Bar and specimen metadata of a CSV record: each key from the TOML, else from the
+/// CSV's `#` header under the same name with `_` for `.` (`# bar_diameter: 20 mm`,
+/// `# specimen_length: 4 mm`, `# bar_poisson_ratio: 0.29`).
+struct Metadata<'a> {
+    sidecar: &'a Sidecar,
+    table: &'a CsvTable,
+}
+
+impl Metadata<'_> {
+    fn optional(
+        &self,
+        key: &str,
+        value: &Option<Spanned<String>>,
+        dimension: Dimension,
+    ) -> Result<Option<(f64, Source)>, ExperimentError> {
+        let header_key = key.replace('.', "_");
+        self.sidecar.optional_metadata(
+            self.table,
+            (key, value.as_ref()),
+            &[(header_key.as_str(), "")],
+            dimension,
+        )
+    }
+
+    fn required(
+        &self,
+        key: &str,
+        value: &Option<Spanned<String>>,
+        dimension: Dimension,
+    ) -> Result<f64, ExperimentError> {
+        let header_key = key.replace('.', "_");
+        let found = self.sidecar.metadata(
+            self.table,
+            (key, value.as_ref()),
+            &[(header_key.as_str(), "")],
+            dimension,
+        )?;
+        Ok(found.0)
+    }
+
+    /// An error about the value read from `source` (`span`: its place in the TOML).
+    fn invalid(
+        &self,
+        source: &Source,
+        span: Option<Range<usize>>,
+        problem: String,
+    ) -> ExperimentError {
+        match source {
+            Source::Toml { key } => self.sidecar.invalid(key, span.unwrap_or(0..0), problem),
+            Source::Header { key, line } => ExperimentError::BadHeader {
+                file: self.table.file.clone(),
+                line: *line,
+                key: key.clone(),
+                problem,
+            },
+        }
+    }
+
+    fn bar(&self, b: &BarSpec) -> Result<Bar, ExperimentError> {
+        let elastic_modulus_pa = self.required(
+            "bar.elastic_modulus",
+            &b.elastic_modulus,
+            Dimension::Modulus,
+        )?;
+        if b.density.is_some() && b.wave_speed.is_some() {
+            let span = b.density.as_ref().map_or(0..0, |d| d.span());
+            return Err(self.sidecar.invalid(
+                "bar.density",
+                span,
+                "the bar needs exactly one of `density` and `wave_speed`",
+            ));
+        }
+        let density = match &b.wave_speed {
+            Some(_) => None,
+            None => self.optional("bar.density", &b.density, Dimension::Density)?,
+        };
+        let stated_density = density.is_some();
+        let (density_kg_m3, source, span) = match density {
+            Some((rho, source)) => (rho, source, b.density.as_ref().map(|d| d.span())),
+            None => {
+                let (c0, source) = self
+                    .optional("bar.wave_speed", &b.wave_speed, Dimension::Velocity)?
+                    .ok_or_else(|| ExperimentError::MissingMetadata {
+                        toml: self.sidecar.file.clone(),
+                        csv: self.table.file.clone(),
+                        key: "bar.density` or `bar.wave_speed".into(),
+                        header_keys: "`bar_density`, `bar_wave_speed`".into(),
+                    })?;
+                let span = b.wave_speed.as_ref().map(|c| c.span());
+                (elastic_modulus_pa / (c0 * c0), source, span)
+            }
+        };
+        let delay = |key: &str, value: &Option<Spanned<String>>| {
+            Ok::<_, ExperimentError>(self.optional(key, value, Dimension::Time)?.map(|d| d.0))
+        };
+        let bar = Bar {
+            elastic_modulus_pa,
+            density_kg_m3,
+            diameter_m: self.required("bar.diameter", &b.diameter, Dimension::Length)?,
+            incident_gauge_to_specimen_m: self.required(
+                "bar.incident_gauge_to_specimen",
+                &b.incident_gauge_to_specimen,
+                Dimension::Length,
+            )?,
+            transmitted_gauge_to_specimen_m: self.required(
+                "bar.transmitted_gauge_to_specimen",
+                &b.transmitted_gauge_to_specimen,
+                Dimension::Length,
+            )?,
+            incident_delay_calibrated_s: delay(
+                "bar.incident_gauge_delay",
+                &b.incident_gauge_delay,
+            )?,
+            transmitted_delay_calibrated_s: delay(
+                "bar.transmitted_gauge_delay",
+                &b.transmitted_gauge_delay,
+            )?,
+            poisson_ratio: self.poisson_ratio(b)?,
+        };
+        bar.check_wave_speed(stated_density)
+            .map_err(|problem| self.invalid(&source, span, problem))?;
+        Ok(bar)
+    }
+
+    /// Poisson's ratio of the bars (TOML `bar.poisson_ratio` or header
+    /// `bar_poisson_ratio`), which must lie in (0, 0.5).
+    fn poisson_ratio(&self, b: &BarSpec) -> Result<Option<f64>, ExperimentError> {
+        let found = match &b.poisson_ratio {
+            Some(nu) => Some((
+                *nu.get_ref(),
+                Source::Toml {
+                    key: "bar.poisson_ratio".into(),
+                },
+            )),
+            None => header::lookup(self.table, &[("bar_poisson_ratio", "1")], Dimension::Strain)
+                .map_err(|bad| ExperimentError::BadHeader {
+                    file: self.table.file.clone(),
+                    line: bad.line,
+                    key: bad.key,
+                    problem: bad.problem,
+                })?,
+        };
+        match found {
+            Some((v, _)) if v > 0.0 && v < 0.5 => Ok(Some(v)),
+            Some((v, source)) => Err(self.invalid(
+                &source,
+                b.poisson_ratio.as_ref().map(|nu| nu.span()),
+                format!(
+                    "{v}: expected a Poisson ratio between 0 and 0.5 (steel 0.29, titanium 0.32)"
+                ),
+            )),
+            None => Ok(None),
+        }
     }
 }
 
@@ -452,20 +560,6 @@ fn processing(
         dispersion: dispersion.is_some_and(|d| *d.get_ref()),
         filter,
     })
-}
-
-/// Poisson's ratio of the bars, which must lie in (0, 0.5).
-fn poisson_ratio(sidecar: &Sidecar, nu: &Spanned<f64>) -> Result<f64, ExperimentError> {
-    let v = *nu.get_ref();
-    if v > 0.0 && v < 0.5 {
-        Ok(v)
-    } else {
-        Err(sidecar.invalid(
-            "bar.poisson_ratio",
-            nu.span(),
-            format!("{v}: expected a Poisson ratio between 0 and 0.5 (steel 0.29, titanium 0.32)"),
-        ))
-    }
 }
 
 /// +1 for a record stored compression negative (the default), −1 for one declared

@@ -2,6 +2,7 @@
 //! for error messages, quantity strings and column specifications.
 
 use super::error::{ExperimentError, Location};
+use super::header::{self, HeaderKey, Source};
 use super::table::CsvTable;
 use super::units::{parse_quantity, Dimension, QuantityProblem};
 use serde::de::DeserializeOwned;
@@ -227,6 +228,44 @@ impl Sidecar {
                 })
             }
         }
+    }
+
+    /// A metadata value: the TOML's `key` where it is given, otherwise the first of
+    /// `header_keys` in the CSV header of `table`; `Ok(None)` if neither has it.
+    pub fn optional_metadata(
+        &self,
+        table: &CsvTable,
+        (key, value): (&str, Option<&Spanned<String>>),
+        header_keys: &[HeaderKey],
+        dimension: Dimension,
+    ) -> Result<Option<(f64, Source)>, ExperimentError> {
+        if let Some(v) = value {
+            let si = self.positive(key, v, dimension)?;
+            return Ok(Some((si, Source::Toml { key: key.into() })));
+        }
+        header::lookup(table, header_keys, dimension).map_err(|bad| ExperimentError::BadHeader {
+            file: table.file.clone(),
+            line: bad.line,
+            key: bad.key,
+            problem: bad.problem,
+        })
+    }
+
+    /// `optional_metadata` that must be found in the TOML or the header.
+    pub fn metadata(
+        &self,
+        table: &CsvTable,
+        (key, value): (&str, Option<&Spanned<String>>),
+        header_keys: &[HeaderKey],
+        dimension: Dimension,
+    ) -> Result<(f64, Source), ExperimentError> {
+        self.optional_metadata(table, (key, value), header_keys, dimension)?
+            .ok_or_else(|| ExperimentError::MissingMetadata {
+                toml: self.file.clone(),
+                csv: table.file.clone(),
+                key: key.into(),
+                header_keys: header::names(header_keys),
+            })
     }
 
     /// Check that `time` (from column `spec` of `table`) increases strictly.

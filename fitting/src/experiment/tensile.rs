@@ -211,36 +211,6 @@ impl Geometry {
     }
 }
 
-/// A metadata value: the TOML's `key` where it is given, otherwise the first of
-/// `header_keys` in the CSV header of `table`.
-fn metadata(
-    sidecar: &Sidecar,
-    table: &CsvTable,
-    (key, value): (&str, &Option<Spanned<String>>),
-    header_keys: &[(&'static str, &'static str)],
-    dimension: Dimension,
-) -> Result<(f64, Source), ExperimentError> {
-    if let Some(v) = value {
-        let si = sidecar.positive(key, v, dimension)?;
-        return Ok((si, Source::Toml { key: key.into() }));
-    }
-    match header::lookup(table, header_keys, dimension) {
-        Ok(Some(found)) => Ok(found),
-        Ok(None) => Err(ExperimentError::MissingMetadata {
-            toml: sidecar.file.clone(),
-            csv: table.file.clone(),
-            key: key.into(),
-            header_keys: header::names(header_keys),
-        }),
-        Err(bad) => Err(ExperimentError::BadHeader {
-            file: table.file.clone(),
-            line: bad.line,
-            key: bad.key,
-            problem: bad.problem,
-        }),
-    }
-}
-
 /// One record: the CSV `data_file` read with the TOML's columns, geometry and window.
 fn read_record(
     sidecar: &Sidecar,
@@ -250,17 +220,15 @@ fn read_record(
     name: String,
 ) -> Result<TensileExperiment, ExperimentError> {
     let table = CsvTable::read_rows(&data_file, 2)?;
-    let (temperature_k, temperature_source) = metadata(
-        sidecar,
+    let (temperature_k, temperature_source) = sidecar.metadata(
         &table,
-        ("temperature", &spec.temperature),
+        ("temperature", spec.temperature.as_ref()),
         header::TEMPERATURE_KEYS,
         Dimension::Temperature,
     )?;
-    let (nominal_strain_rate_per_s, rate_source) = metadata(
-        sidecar,
+    let (nominal_strain_rate_per_s, rate_source) = sidecar.metadata(
         &table,
-        ("nominal_strain_rate", &spec.nominal_strain_rate),
+        ("nominal_strain_rate", spec.nominal_strain_rate.as_ref()),
         header::STRAIN_RATE_KEYS,
         Dimension::StrainRate,
     )?;
