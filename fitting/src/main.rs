@@ -39,18 +39,16 @@ enum Command {
 
 fn main() {
     let cli = Cli::parse();
-    let result = match cli.command {
-        Command::Drive(a) => fitting::cli::drive::run(a),
-        Command::Verify(a) => fitting::cli::verify::run(a),
-        Command::Bench(a) => fitting::cli::bench::run(a),
-        Command::Shpb(a) => fitting::cli::shpb::run(a),
-        Command::Fit(a) => fitting::cli::fit::run(a),
-        Command::Export(a) => fitting::cli::export::run(a),
-        Command::Predict(a) => fitting::cli::predict::run(a),
-        Command::Synth(a) => fitting::cli::synth::run(a),
-        Command::Simulate(a) => fitting::cli::simulate::run(a),
-        Command::BenchMpm(a) => fitting::cli::bench_mpm::run(a),
-    };
+    // Every command runs on a worker of one pool (RAYON_NUM_THREADS, default: the cores),
+    // so that a parallel loop starts where it is called instead of being handed from the
+    // main thread to the pool and back: a futex round trip per loop, tens per MPM step,
+    // which cost a small run more system time than compute (issue 15). The stack is the
+    // main thread's usual 8 MiB.
+    let pool = rayon::ThreadPoolBuilder::new()
+        .stack_size(8 << 20)
+        .build()
+        .expect("the thread pool starts");
+    let result = pool.install(|| dispatch(cli.command));
     if let Err(e) = result {
         let message = format!("{e:#}");
         eprintln!("error: {message}");
@@ -61,5 +59,20 @@ run mpw from the repository root, or name the files (mpw fit SET.toml, mpw verif
             );
         }
         std::process::exit(1);
+    }
+}
+
+fn dispatch(command: Command) -> anyhow::Result<()> {
+    match command {
+        Command::Drive(a) => fitting::cli::drive::run(a),
+        Command::Verify(a) => fitting::cli::verify::run(a),
+        Command::Bench(a) => fitting::cli::bench::run(a),
+        Command::Shpb(a) => fitting::cli::shpb::run(a),
+        Command::Fit(a) => fitting::cli::fit::run(a),
+        Command::Export(a) => fitting::cli::export::run(a),
+        Command::Predict(a) => fitting::cli::predict::run(a),
+        Command::Synth(a) => fitting::cli::synth::run(a),
+        Command::Simulate(a) => fitting::cli::simulate::run(a),
+        Command::BenchMpm(a) => fitting::cli::bench_mpm::run(a),
     }
 }
