@@ -51,13 +51,28 @@ fn simulate_gives_the_same_numbers_on_any_thread_count() {
 /// bars at once, with their system time.
 #[test]
 fn small_model_bench_cases_run() {
-    let done = mpw(2, &["bench-mpm", "--cases", "c,n", "--steps", "1", "--warm-up", "1"]);
+    let done = mpw(
+        2,
+        &[
+            "bench-mpm",
+            "--cases",
+            "c,n",
+            "--steps",
+            "1",
+            "--warm-up",
+            "1",
+        ],
+    );
     let text = String::from_utf8_lossy(&done.stdout);
     assert!(
         done.status.success(),
         "{text}{}",
         String::from_utf8_lossy(&done.stderr)
     );
-    assert_eq!(text.matches("(c) axisymmetric Taylor bar").count(), 2, "{text}");
+    assert_eq!(
+        text.matches("(c) axisymmetric Taylor bar").count(),
+        2,
+        "{text}"
+    );
     assert!(text.contains("(n) 2 Taylor bars at once"), "{text}");
 }
