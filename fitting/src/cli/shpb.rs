@@ -12,7 +12,7 @@
 use crate::chart::{LineChart, Series};
 use crate::experiment::ShpbExperiment;
 use crate::shpb::plateau::{MIN_IN_BAND, TOLERANCE as PLATEAU_TOLERANCE};
-use crate::shpb::pulses::SMOOTHING_S;
+use crate::shpb::pulses::smoothing_width;
 use crate::shpb::signal::moving_average;
 use crate::shpb::{analyze, analyze_with, Alignment, Processing, ShpbAnalysis};
 use anyhow::{Context, Result};
@@ -415,7 +415,7 @@ fn summary(exp: &ShpbExperiment, a: &ShpbAnalysis) {
 /// it, on the 1 µs averages: the time-resolved account of the test.
 fn histories(a: &ShpbAnalysis) {
     let range = a.plateau.range.clone();
-    let width = ((SMOOTHING_S / (a.time_s[1] - a.time_s[0])).round() as usize).max(1);
+    let width = smoothing_width(a.time_s[1] - a.time_s[0]);
     let [rate, stress, ratio] = [
         &a.strain_rate_3wave_per_s,
         &a.true_stress_pa,

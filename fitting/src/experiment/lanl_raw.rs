@@ -161,13 +161,9 @@ impl RawRecord {
             "timing at the calibrated {timing:.1} m/s, impedance at c0 = {c0:.1} m/s"
         ));
         let nu = self.both_bars("Poisson Ratio", None)?;
-        if !(nu > 0.0 && nu < 0.5) {
+        if let Err(problem) = Bar::check_poisson_ratio(nu) {
             let line = self.entry("Incident Bar Poisson Ratio")?.line;
-            return Err(self.invalid_at(
-                line,
-                "Poisson Ratio",
-                format!("{nu}: expected a Poisson ratio between 0 and 0.5"),
-            ));
+            return Err(self.invalid_at(line, "Poisson Ratio", problem));
         }
         let bar = Bar {
             elastic_modulus_pa: e,

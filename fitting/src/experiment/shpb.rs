@@ -214,6 +214,17 @@ impl Bar {
         ))
     }
 
+    /// `nu` if it is a Poisson ratio, in (0, 0.5), else what is wrong.
+    pub fn check_poisson_ratio(nu: f64) -> Result<f64, String> {
+        if nu > 0.0 && nu < 0.5 {
+            Ok(nu)
+        } else {
+            Err(format!(
+                "{nu}: expected a Poisson ratio between 0 and 0.5 (steel 0.29, titanium 0.32)"
+            ))
+        }
+    }
+
     /// Cross-section A_b = π d²/4 [m²].
     pub fn area_m2(&self) -> f64 {
         PI * self.diameter_m * self.diameter_m / 4.0
@@ -488,25 +499,21 @@ impl Metadata<'_> {
                     key: "bar.poisson_ratio".into(),
                 },
             )),
-            None => header::lookup(self.table, &[("bar_poisson_ratio", "1")], Dimension::Strain)
-                .map_err(|bad| ExperimentError::BadHeader {
-                    file: self.table.file.clone(),
-                    line: bad.line,
-                    key: bad.key,
-                    problem: bad.problem,
-                })?,
+            // a ratio, read as a strain of unit "1"
+            None => self.sidecar.optional_metadata(
+                self.table,
+                ("bar.poisson_ratio", None),
+                &[("bar_poisson_ratio", "1")],
+                Dimension::Strain,
+            )?,
         };
-        match found {
-            Some((v, _)) if v > 0.0 && v < 0.5 => Ok(Some(v)),
-            Some((v, source)) => Err(self.invalid(
-                &source,
-                b.poisson_ratio.as_ref().map(|nu| nu.span()),
-                format!(
-                    "{v}: expected a Poisson ratio between 0 and 0.5 (steel 0.29, titanium 0.32)"
-                ),
-            )),
-            None => Ok(None),
-        }
+        found
+            .map(|(nu, source)| {
+                Bar::check_poisson_ratio(nu).map_err(|problem| {
+                    self.invalid(&source, b.poisson_ratio.as_ref().map(|v| v.span()), problem)
+                })
+            })
+            .transpose()
     }
 }
 

@@ -21,7 +21,7 @@ use super::error::ShpbError;
 use super::filter::{polynomial_trend, SavitzkyGolay};
 use super::gauges::{GaugeSignals, Pulse};
 use super::plateau::Plateau;
-use super::pulses::{detect_pulses, PulseWindows, SMOOTHING_S};
+use super::pulses::{detect_pulses, smoothing_width, PulseWindows};
 use super::signal::{cumulative_integral, mean_std, moving_average};
 use crate::experiment::ShpbExperiment;
 use materials::limits::SIGNAL_SAMPLES;
@@ -207,7 +207,7 @@ impl ShpbAnalysis {
     /// incident and reflected pulses shows here, the smooth hardening does not.
     pub fn force_front_oscillation(&self) -> f64 {
         let dt = self.time_s[1] - self.time_s[0];
-        let width = ((SMOOTHING_S / dt).round() as usize).max(1);
+        let width = smoothing_width(dt);
         let f1 = &moving_average(&self.force_front_n, width)[self.plateau.range.clone()];
         let trend = polynomial_trend(f1, 2);
         let deviation = f1.iter().zip(&trend).map(|(f, t)| f - t);

@@ -23,6 +23,11 @@ use crate::experiment::ShpbExperiment;
 
 /// Moving-average length used to find pulses [s].
 pub const SMOOTHING_S: f64 = 1e-6;
+
+/// `SMOOTHING_S` in samples of interval `dt` [s] (at least one).
+pub fn smoothing_width(dt: f64) -> usize {
+    ((SMOOTHING_S / dt).round() as usize).max(1)
+}
 /// Margin on each side of the incident window, as a fraction of the pulse duration.
 const MARGIN_FRACTION: f64 = 0.1;
 /// Samples needed before the incident pulse to estimate the baseline.
@@ -60,7 +65,7 @@ pub fn detect_pulses(exp: &ShpbExperiment) -> Result<PulseWindows, ShpbError> {
     let t = &exp.time_s;
     let n = t.len();
     let dt = (t[n - 1] - t[0]) / (n - 1) as f64;
-    let width = ((SMOOTHING_S / dt).round() as usize).max(1);
+    let width = smoothing_width(dt);
     let delay_incident_s = exp.bar.incident_delay_s();
     let delay_transmitted_s = exp.bar.transmitted_delay_s();
 
