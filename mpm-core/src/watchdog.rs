@@ -1,10 +1,10 @@
 //! Checks that stop a run which has gone bad before its numbers are reported, beside the
 //! NaN, det F ≤ 0 and energy blow-up checks of the solver (DESIGN 6.6):
 //!
-//! - speed: no point of a solid moves faster than 2 v_ref + c_max, with v_ref the fastest
-//!   prescribed or initial speed [m/s] and c_max the largest dilatational wave speed
-//!   [m/s] (behind a wave the particle velocity is σ/(ρ c) < c for any stress a solid
-//!   carries);
+//! - speed: no point of a solid moves faster than 2 (v_ref + |b| t) + c_max by the time t,
+//!   with v_ref the fastest prescribed or initial speed [m/s], b the body force [m/s²]
+//!   (free fall adds |b| t) and c_max the largest dilatational wave speed [m/s] (behind a
+//!   wave the particle velocity is σ/(ρ c) < c for any stress a solid carries);
 //! - escape: no point is farther from the initial bounding box of the points than the
 //!   box's diagonal plus ten cells plus the travel 2 v_ref t + |b| t²/2 that the
 //!   prescribed speeds and the body force b allow by the time t;
@@ -17,10 +17,19 @@
 use crate::failure::Cause;
 use nalgebra::SVector;
 
+/// What a point may have reached by a given time.
+#[derive(Debug, Clone, Copy)]
+pub struct Bounds {
+    /// Speed [m/s].
+    pub speed: f64,
+    /// Distance from the initial bounding box [m].
+    pub reach: f64,
+}
+
 #[derive(Debug, Clone)]
 pub struct Watchdog<const D: usize> {
-    /// Largest allowed point speed [m/s].
-    pub speed_limit: f64,
+    /// Largest dilatational wave speed c_max [m/s].
+    pub c_max: f64,
     /// Initial bounding box of the points [m].
     pub lo: SVector<f64, D>,
     pub hi: SVector<f64, D>,
@@ -51,7 +60,7 @@ impl<const D: usize> Watchdog<D> {
             .iter()
             .fold(start, |(lo, hi), x| (lo.inf(x), hi.sup(x)));
         Watchdog {
-            speed_limit: 2.0 * v_ref + c_max,
+            c_max,
             lo,
             hi,
             reach: (hi - lo).norm() + 10.0 * h,
@@ -61,26 +70,30 @@ impl<const D: usize> Watchdog<D> {
         }
     }
 
-    /// Distance from the initial box a point may have reached by the time `t` [m].
-    pub fn reach_at(&self, t: f64) -> f64 {
-        self.reach + 2.0 * self.v_ref * t + 0.5 * self.body_force * t * t
+    /// The speed [m/s] and the distance from the initial box [m] a point may have reached
+    /// by the time `t`.
+    pub fn bounds_at(&self, t: f64) -> Bounds {
+        Bounds {
+            speed: 2.0 * (self.v_ref + self.body_force * t) + self.c_max,
+            reach: self.reach + 2.0 * self.v_ref * t + 0.5 * self.body_force * t * t,
+        }
     }
 
-    /// Whether a point at `x` moving at `v` is too fast or farther than `reach` (from
-    /// `reach_at`) from the initial box. Called from the solver's per-point position
+    /// Whether a point at `x` moving at `v` is faster or farther from the initial box than
+    /// `bounds` (from `bounds_at`) allow. Called from the solver's per-point position
     /// update, which already visits every point in parallel.
     #[inline]
     pub fn check_point(
         &self,
         x: &SVector<f64, D>,
         v: &SVector<f64, D>,
-        reach: f64,
+        bounds: Bounds,
     ) -> Option<Cause> {
-        let speed = v.norm();
-        if speed > self.speed_limit {
+        let (speed, reach) = (v.norm(), bounds.reach);
+        if speed > bounds.speed {
             return Some(Cause::SpeedLimit {
                 speed,
-                limit: self.speed_limit,
+                limit: bounds.speed,
             });
         }
         let distance = (x - x.sup(&self.lo).inf(&self.hi)).norm();
@@ -110,29 +123,33 @@ mod tests {
     #[test]
     fn limits_follow_from_the_scene() {
         let w = dog();
-        assert_eq!(w.speed_limit, 120.0);
+        assert_eq!(w.bounds_at(0.0).speed, 120.0);
         assert_eq!(w.reach, 6.0); // diagonal 5 m plus ten 0.1 m cells
+                                  // a body force of 1000 m/s² adds free fall: 100 m/s by t = 0.1 s, twice over
+        let x = [Vector2::new(0.0, 0.0), Vector2::new(3.0, 4.0)];
+        let falling = Watchdog::new(&x, 0.1, (10.0, 100.0, 1000.0), 0.25);
+        assert_eq!(falling.bounds_at(0.1).speed, 320.0);
     }
 
     #[test]
     fn a_fast_or_escaped_point_is_caught() {
         let w = dog();
         let (x, still) = (Vector2::new(1.0, 1.0), Vector2::zeros());
-        assert!(w.check_point(&x, &still, w.reach_at(0.0)).is_none());
+        assert!(w.check_point(&x, &still, w.bounds_at(0.0)).is_none());
         let fast = Vector2::new(0.0, 121.0);
         assert!(matches!(
-            w.check_point(&x, &fast, w.reach_at(0.0)),
+            w.check_point(&x, &fast, w.bounds_at(0.0)),
             Some(Cause::SpeedLimit { .. })
         ));
         // (10, 4) is 7 m beyond the box edge x = 3: farther than 6 m at t = 0
         let far = Vector2::new(10.0, 4.0);
-        match w.check_point(&far, &still, w.reach_at(0.0)) {
+        match w.check_point(&far, &still, w.bounds_at(0.0)) {
             Some(Cause::Escaped { distance, .. }) => assert!((distance - 7.0).abs() < 1e-12),
             other => panic!("{other:?}"),
         }
         // by t = 0.05 s the prescribed 10 m/s allows 1 m more travel
-        assert_eq!(w.reach_at(0.05), 7.0);
-        assert!(w.check_point(&far, &still, w.reach_at(0.05)).is_none());
+        assert_eq!(w.bounds_at(0.05).reach, 7.0);
+        assert!(w.check_point(&far, &still, w.bounds_at(0.05)).is_none());
     }
 
     #[test]

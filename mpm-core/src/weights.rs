@@ -6,8 +6,8 @@
 //! step's last stage).
 
 use crate::grid::Grid;
-use crate::shape::Kernel;
-use nalgebra::SVector;
+use crate::shape::{Kernel, Point, Reach};
+use nalgebra::{Matrix3, SVector};
 use rayon::prelude::*;
 
 /// Weights of every particle's stencil for the current grid.
@@ -36,32 +36,42 @@ pub struct Stencil<'a, const D: usize> {
 }
 
 impl<const D: usize> WeightCache<D> {
-    /// Evaluate kernel `K` at every position on `grid` (fitted to hold the stencils), for
-    /// points with domain half-widths `half` [m].
+    /// Evaluate kernel `K` with stencils of `reach` at every position on `grid` (fitted to
+    /// hold the stencils), for points with reference domain half-widths `half` [m] and
+    /// deformation gradients `f`.
     pub fn compute<K: Kernel<D>>(
         &mut self,
         grid: &Grid<D>,
+        reach: Reach,
         positions: &[SVector<f64, D>],
-        half: &[SVector<f64, D>],
+        (half, f): (&[SVector<f64, D>], &[Matrix3<f64>]),
     ) {
-        let nodes = K::NODES;
+        let nodes = reach.nodes(D);
         self.nodes = nodes;
-        self.support = K::SUPPORT;
-        stencil_offsets(grid, K::SUPPORT, &mut self.offsets);
-        let pad: usize = grid.strides.iter().map(|s| s * K::PAD).sum();
+        self.support = reach.support;
+        stencil_offsets(grid, reach.support, &mut self.offsets);
+        let pad: usize = grid.strides.iter().map(|s| s * reach.pad).sum();
         self.first.resize(positions.len(), 0);
         self.n.resize(positions.len() * nodes, 0.0);
         self.grad.resize(positions.len() * nodes, SVector::zeros());
         positions
             .par_iter()
-            .zip(half.par_iter())
+            .zip(half.par_iter().zip(f.par_iter()))
             .zip(self.first.par_iter_mut())
             .zip(self.n.par_chunks_mut(nodes))
             .zip(self.grad.par_chunks_mut(nodes))
-            .for_each(|((((x, half), first), n), grad)| {
+            .for_each(|((((x, (half, f)), first), n), grad)| {
                 let (corner, xi) = grid.locate(x);
-                let shift = K::evaluate(&xi, half, &grid.inv_spacing, n, grad);
-                let shift: usize = (0..D).map(|k| shift[k] * grid.strides[k]).sum();
+                let point = Point {
+                    xi,
+                    half,
+                    f,
+                    inv_h: &grid.inv_spacing,
+                };
+                let start = K::evaluate(&point, reach, n, grad);
+                let shift: usize = (0..D)
+                    .map(|k| (start[k] + reach.pad as i64) as usize * grid.strides[k])
+                    .sum();
                 *first = corner - pad + shift;
             });
     }
@@ -124,7 +134,8 @@ mod tests {
         g.fit([0, 0, 0], [3, 3, 3], 0, 2);
         let x = vec![Vector3::new(0.6, 0.3, 2.2), Vector3::new(1.9, 0.01, 0.5)];
         let mut cache = WeightCache::default();
-        cache.compute::<Linear>(&g, &x, &[Vector3::zeros(); 2]);
+        let domains = ([Vector3::zeros(); 2], [nalgebra::Matrix3::identity(); 2]);
+        cache.compute::<Linear>(&g, Reach::CELL, &x, (&domains.0, &domains.1));
         let offsets = g.corner_offsets();
         for (i, x) in x.iter().enumerate() {
             let (base, xi) = g.locate(x);

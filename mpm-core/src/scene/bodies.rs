@@ -115,7 +115,10 @@ pub(super) fn add_bodies<const D: usize>(
         if points.is_empty() {
             return Err(check.err(sf, "holds no material point (smaller than a sub-cell?)"));
         }
-        solver.add_body(&b.name, material, &points, velocity);
+        let block = solver.add_body(&b.name, material, &points, velocity);
+        if solver.settings.shape_function.needs_domains() {
+            solver.set_half_size(block, s * 0.5);
+        }
     }
     Ok(())
 }

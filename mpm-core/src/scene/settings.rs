@@ -74,5 +74,10 @@ pub(super) fn settings<const D: usize>(
         settings.bulk_viscosity =
             (linear > 0.0 || quadratic > 0.0).then_some(BulkViscosity { linear, quadratic });
     }
+    if let Some(name) = &sv.shape_function {
+        settings.shape_function = name
+            .parse()
+            .map_err(|e: String| check.err("solver.shape_function", e))?;
+    }
     Ok(settings)
 }

@@ -59,6 +59,8 @@ pub struct SolverSpec {
     pub domain: Option<BoxSpec>,
     pub blowup_factor: Option<f64>,
     pub bulk_viscosity: Option<[f64; 2]>,
+    /// "linear" (default), "ugimp", "cpgimp" or "cpdi" (module `shape`).
+    pub shape_function: Option<String>,
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]

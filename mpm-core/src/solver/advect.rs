@@ -13,7 +13,7 @@ impl<const D: usize> Solver<D> {
         let b = self.settings.body_force;
         let domain = self.settings.domain;
         let watchdog = self.watchdog.as_ref();
-        let reach = watchdog.map_or(f64::INFINITY, |w| w.reach_at(self.time));
+        let bounds = watchdog.map(|w| w.bounds_at(self.time));
         let p = &mut self.particles;
         let s = &self.scratch;
         let failure = p
@@ -27,7 +27,10 @@ impl<const D: usize> Solver<D> {
                 if !x.iter().all(|c| c.is_finite()) {
                     return Some((i, Cause::NonFinite { what: "position" }));
                 }
-                if let Some(cause) = watchdog.and_then(|w| w.check_point(x, v, reach)) {
+                if let Some(cause) = watchdog
+                    .zip(bounds)
+                    .and_then(|(w, b)| w.check_point(x, v, b))
+                {
                     return Some((i, cause));
                 }
                 if let Some((lo, hi)) = domain {

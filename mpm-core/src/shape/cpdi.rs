@@ -1,0 +1,144 @@
+//! Vertex-form kernels: CPDI1 with parallelogram / parallelepiped domains (Sadeghirad et
+//! al. 2011; thesis eq. 10.4 and reading §1.3), and cpGIMP as the thesis runs it, through
+//! the same machinery with a shear-free domain. The domain of a point is spanned by the
+//! half-edge vectors r_k (R [m], from the in-plane block of F), its 2ᴰ vertices are
+//! x^j = x_p + R ξ^j with ξ^j ∈ {±1}ᴰ, and eq. 10.4 integrates to
+//!
+//!   N^I = 2^{−D} Σ_j N^I(x^j),   ∇N^I = 2^{−D} Σ_j N^I(x^j) R^{−T} ξ^j,
+//!
+//! with N^I the linear grid functions (appendix E): a point reaches every node of the
+//! cells that hold its vertices. Σ_I N^I = 1 and Σ_I ∇N^I = 0 exactly; the weights
+//! reproduce linear fields. A point without a domain gets the linear weights.
+
+use super::{corners, linear, node_index, Kernel, Point, Reach};
+use crate::grid::floor_i64;
+use nalgebra::{Matrix3, SMatrix, SVector};
+
+/// CPDI1: the domain deformed by the whole F, R = F diag(a).
+pub struct Cpdi;
+
+/// cpGIMP as the thesis runs it, "a CPDI category" (§10.1): the vertex form with the
+/// domain stretched by the diagonal of F only, R = diag(F_kk a_k) (shear neglected).
+pub struct CpGimp;
+
+impl<const D: usize> Kernel<D> for Cpdi {
+    const DOMAIN: bool = true;
+
+    fn extent(
+        half: &SVector<f64, D>,
+        f: &Matrix3<f64>,
+        inv_h: &SVector<f64, D>,
+    ) -> SVector<f64, D> {
+        vertex_extent(&SMatrix::from_fn(|i, k| f[(i, k)] * half[k]), inv_h)
+    }
+
+    fn evaluate(
+        p: &Point<'_, D>,
+        reach: Reach,
+        n: &mut [f64],
+        grad: &mut [SVector<f64, D>],
+    ) -> [i64; D] {
+        vertex_weights(
+            p,
+            &SMatrix::from_fn(|i, k| p.f[(i, k)] * p.half[k]),
+            reach,
+            n,
+            grad,
+        )
+    }
+}
+
+impl<const D: usize> Kernel<D> for CpGimp {
+    const DOMAIN: bool = true;
+
+    fn extent(
+        half: &SVector<f64, D>,
+        f: &Matrix3<f64>,
+        inv_h: &SVector<f64, D>,
+    ) -> SVector<f64, D> {
+        vertex_extent(&stretched(half, f), inv_h)
+    }
+
+    fn evaluate(
+        p: &Point<'_, D>,
+        reach: Reach,
+        n: &mut [f64],
+        grad: &mut [SVector<f64, D>],
+    ) -> [i64; D] {
+        vertex_weights(p, &stretched(p.half, p.f), reach, n, grad)
+    }
+}
+
+/// R = diag(F_kk a_k) [m].
+fn stretched<const D: usize>(half: &SVector<f64, D>, f: &Matrix3<f64>) -> SMatrix<f64, D, D> {
+    SMatrix::from_fn(|i, k| if i == k { f[(k, k)] * half[k] } else { 0.0 })
+}
+
+/// e_i = Σ_k |R_ik| / h_i: the vertices' largest distance from the point per axis [cells].
+fn vertex_extent<const D: usize>(
+    r: &SMatrix<f64, D, D>,
+    inv_h: &SVector<f64, D>,
+) -> SVector<f64, D> {
+    SVector::from_fn(|i, _| r.row(i).abs().sum() * inv_h[i])
+}
+
+/// N^I and ∇N^I of the domain with half-edge vectors `r` [m] (module docs).
+fn vertex_weights<const D: usize>(
+    p: &Point<'_, D>,
+    r: &SMatrix<f64, D, D>,
+    reach: Reach,
+    n: &mut [f64],
+    grad: &mut [SVector<f64, D>],
+) -> [i64; D] {
+    let Some(r_inv) = r.try_inverse().filter(|_| p.half.min() > 0.0) else {
+        return point_weights(p, reach, n, grad);
+    };
+    let e = vertex_extent(r, p.inv_h);
+    let first: [i64; D] = std::array::from_fn(|k| floor_i64(p.xi[k] - e[k]));
+    n.fill(0.0);
+    grad.fill(SVector::zeros());
+    let share = 1.0 / corners(D) as f64;
+    for j in 0..corners(D) {
+        let sign = SVector::<f64, D>::from_fn(|k, _| if (j >> k) & 1 == 1 { 1.0 } else { -1.0 });
+        let vertex = p.xi + (r * sign).component_mul(p.inv_h);
+        let cell: [i64; D] = std::array::from_fn(|k| floor_i64(vertex[k]));
+        let local = SVector::<f64, D>::from_fn(|k, _| vertex[k] - cell[k] as f64);
+        let g = r_inv.transpose() * sign * share;
+        for corner in 0..corners(D) {
+            let mut node = 0;
+            let mut weight = share;
+            for k in (0..D).rev() {
+                let upper = (corner >> k) & 1;
+                let index = cell[k] + upper as i64 - first[k];
+                if index < 0 || index >= reach.support as i64 {
+                    weight = 0.0; // reached by rounding only (see `Kernel::evaluate`)
+                }
+                node = node * reach.support + index.clamp(0, reach.support as i64 - 1) as usize;
+                weight *= if upper == 1 { local[k] } else { 1.0 - local[k] };
+            }
+            n[node] += weight;
+            grad[node] += g * (weight / share);
+        }
+    }
+    first
+}
+
+/// The linear weights of the point's cell, placed in a stencil of `reach`.
+fn point_weights<const D: usize>(
+    p: &Point<'_, D>,
+    reach: Reach,
+    n: &mut [f64],
+    grad: &mut [SVector<f64, D>],
+) -> [i64; D] {
+    let w = linear(&p.xi, p.inv_h);
+    n.fill(0.0);
+    grad.fill(SVector::zeros());
+    for (node, (n, g)) in n.iter_mut().zip(grad.iter_mut()).enumerate() {
+        let index: [usize; D] = node_index(node, reach.support);
+        if index.iter().all(|&i| i < 2) {
+            let corner: usize = (0..D).map(|k| index[k] << k).sum();
+            (*n, *g) = (w.n[corner], w.grad[corner]);
+        }
+    }
+    [0; D]
+}

@@ -1,0 +1,145 @@
+//! GIMP shape functions (Bardenhagen & Kober 2004; thesis eq. 10.1-10.3): the hat function
+//! S of the grid averaged over the point's box-shaped domain, a tensor product of 1-D
+//! factors. With Φ the antiderivative of the hat (h = 1: Φ(s) = (1 + s)²/2 on [−1, 0],
+//! 1 − (1 − s)²/2 on [0, 1], 0 below, 1 above) and r = ξ − m the distance of the point
+//! from node m in cells, a domain of half-width l cells gives, for any l > 0
+//! (reading §1.4),
+//!
+//!   S̄(r) = [Φ(r + l) − Φ(r − l)] / (2l),   dS̄/dξ = [S(r + l) − S(r − l)] / (2l),
+//!
+//! which for l ≤ 1/2 is the familiar piecewise form. l = 0 is the hat itself, so classic
+//! MPM is the point-GIMP case.
+//!
+//! - uGIMP: l_k = a_k / h_k, the reference domain, kept through the run.
+//! - cpGIMP, analytic (Wallstedt & Guilkey 2008, the cpGIMP Sadeghirad et al. 2011 compare
+//!   with): l_k = a_k |F_kk| / h_k, the domain stretched by the diagonal of F (shear
+//!   neglected); l may exceed 1/2, the truss stretches 800 %. The thesis's cpGIMP is the
+//!   vertex form of module `cpdi` instead; on the truss the two differ (`mpw verify`).
+
+use super::{node_index, Kernel, Point, Reach};
+use crate::grid::floor_i64;
+use nalgebra::{Matrix3, SVector};
+
+/// Most stencil nodes along one axis.
+pub const MAX_SUPPORT: usize = 32;
+
+/// Half-widths below this [cells] are points: the hat weights (the averaged form would
+/// lose digits to cancellation, and differs from the hat by O(l)).
+const POINT_WIDTH: f64 = 1e-9;
+
+/// Uniform GIMP: the reference domain.
+pub struct UGimp;
+
+/// Convected-particle GIMP, analytic: the hat averaged over the domain stretched by the
+/// diagonal of F.
+pub struct CpGimpAnalytic;
+
+impl<const D: usize> Kernel<D> for UGimp {
+    const DOMAIN: bool = true;
+
+    fn extent(
+        half: &SVector<f64, D>,
+        _: &Matrix3<f64>,
+        inv_h: &SVector<f64, D>,
+    ) -> SVector<f64, D> {
+        half.component_mul(inv_h)
+    }
+
+    #[inline]
+    fn evaluate(
+        p: &Point<'_, D>,
+        reach: Reach,
+        n: &mut [f64],
+        grad: &mut [SVector<f64, D>],
+    ) -> [i64; D] {
+        tensor_product(p, &Self::extent(p.half, p.f, p.inv_h), reach, n, grad)
+    }
+}
+
+impl<const D: usize> Kernel<D> for CpGimpAnalytic {
+    const DOMAIN: bool = true;
+
+    fn extent(
+        half: &SVector<f64, D>,
+        f: &Matrix3<f64>,
+        inv_h: &SVector<f64, D>,
+    ) -> SVector<f64, D> {
+        SVector::from_fn(|k, _| half[k] * f[(k, k)].abs() * inv_h[k])
+    }
+
+    #[inline]
+    fn evaluate(
+        p: &Point<'_, D>,
+        reach: Reach,
+        n: &mut [f64],
+        grad: &mut [SVector<f64, D>],
+    ) -> [i64; D] {
+        tensor_product(p, &Self::extent(p.half, p.f, p.inv_h), reach, n, grad)
+    }
+}
+
+/// Antiderivative Φ of the hat function (cells).
+#[inline]
+fn hat_integral(s: f64) -> f64 {
+    if s <= -1.0 {
+        0.0
+    } else if s <= 0.0 {
+        0.5 * (1.0 + s) * (1.0 + s)
+    } else if s < 1.0 {
+        1.0 - 0.5 * (1.0 - s) * (1.0 - s)
+    } else {
+        1.0
+    }
+}
+
+#[inline]
+fn hat(s: f64) -> f64 {
+    (1.0 - s.abs()).max(0.0)
+}
+
+/// 1-D factors S̄ and dS̄/dξ [per cell] of the `support` nodes from ⌊ξ − l⌋ (the
+/// returned first node, in cells from the cell's lower corner) for a point at ξ with
+/// half-width l (cells).
+#[inline]
+fn axis(xi: f64, l: f64, support: usize) -> (i64, [f64; MAX_SUPPORT], [f64; MAX_SUPPORT]) {
+    let first = floor_i64(xi - l);
+    let (mut s, mut ds) = ([0.0; MAX_SUPPORT], [0.0; MAX_SUPPORT]);
+    for m in 0..support {
+        let r = xi - (first + m as i64) as f64;
+        (s[m], ds[m]) = if l < POINT_WIDTH {
+            let inside = r.abs() < 1.0;
+            (hat(r), if inside { -r.signum() } else { 0.0 })
+        } else {
+            let w = 0.5 / l;
+            (
+                (hat_integral(r + l) - hat_integral(r - l)) * w,
+                (hat(r + l) - hat(r - l)) * w,
+            )
+        };
+    }
+    (first, s, ds)
+}
+
+/// N_I = Π_k S̄_k and ∂N_I/∂x_j = dS̄_j/dξ_j / h_j Π_{k≠j} S̄_k over the stencil.
+#[inline]
+fn tensor_product<const D: usize>(
+    p: &Point<'_, D>,
+    l: &SVector<f64, D>,
+    reach: Reach,
+    n: &mut [f64],
+    grad: &mut [SVector<f64, D>],
+) -> [i64; D] {
+    let support = reach.support;
+    let axes: [(i64, [f64; MAX_SUPPORT], [f64; MAX_SUPPORT]); D] =
+        std::array::from_fn(|k| axis(p.xi[k], l[k], support));
+    for (node, (n, g)) in n.iter_mut().zip(grad.iter_mut()).enumerate() {
+        let index: [usize; D] = node_index(node, support);
+        let s: [f64; D] = std::array::from_fn(|k| axes[k].1[index[k]]);
+        *n = s.iter().product();
+        for j in 0..D {
+            let others: f64 = (0..D).filter(|&k| k != j).map(|k| s[k]).product();
+            g[j] = p.inv_h[j] * axes[j].2[index[j]] * others;
+        }
+    }
+    std::array::from_fn(|k| axes[k].0)
+}

@@ -1,0 +1,382 @@
+//! Every kernel at random points, domains and deformations, in 2D and 3D: partition of
+//! unity, zero gradient sum, reproduction of linear fields; uGIMP/cpGIMP weights against
+//! a quadrature of the hat over the domain and their gradients against central
+//! differences; CPDI against the isoparametric quadrature form of eq. 10.4 (the thesis's
+//! hexahedral route, reading §1.3); the linear weights for points without a domain.
+
+use super::*;
+use nalgebra::{SMatrix, Vector3};
+
+/// A small deterministic generator of uniform numbers in [0, 1).
+struct Uniform(u64);
+
+impl Uniform {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// One kernel evaluation: node lattice coordinates (cells from the point's cell corner),
+/// weights and gradients [1/m].
+struct Evaluation<const D: usize> {
+    nodes: Vec<[i64; D]>,
+    n: Vec<f64>,
+    grad: Vec<SVector<f64, D>>,
+}
+
+fn evaluate<K: Kernel<D>, const D: usize>(
+    xi: &SVector<f64, D>,
+    half: &SVector<f64, D>,
+    f: &Matrix3<f64>,
+    inv_h: &SVector<f64, D>,
+) -> Evaluation<D> {
+    let reach = match K::DOMAIN {
+        true => Reach::of(K::extent(half, f, inv_h).max()),
+        false => Reach::CELL,
+    };
+    let count = reach.nodes(D);
+    let (mut n, mut grad) = (vec![0.0; count], vec![SVector::zeros(); count]);
+    let point = Point {
+        xi: *xi,
+        half,
+        f,
+        inv_h,
+    };
+    let first = K::evaluate(&point, reach, &mut n, &mut grad);
+    assert!(
+        first.iter().all(|&s| -(reach.pad as i64) <= s && s <= 0),
+        "{first:?}"
+    );
+    let nodes = (0..count)
+        .map(|m| {
+            let index: [usize; D] = node_index(m, reach.support);
+            std::array::from_fn(|k| first[k] + index[k] as i64)
+        })
+        .collect();
+    Evaluation { nodes, n, grad }
+}
+
+/// A random deformation gradient: a stretch of up to `stretch` per axis and a shear of up
+/// to 0.5, det F > 0.
+fn random_f(u: &mut Uniform, stretch: f64) -> Matrix3<f64> {
+    loop {
+        let f = Matrix3::from_fn(|i, j| match i == j {
+            true => 0.3 + (stretch - 0.3) * u.next(),
+            false => u.next() - 0.5,
+        });
+        if f.determinant() > 0.05 {
+            return f;
+        }
+    }
+}
+
+/// Σ N = 1, Σ ∇N = 0, Σ N x_I = x_p and Σ x_I ⊗ ∇N_I = I, with x in cells.
+fn check_consistency<const D: usize>(
+    e: &Evaluation<D>,
+    xi: &SVector<f64, D>,
+    inv_h: &SVector<f64, D>,
+    what: &str,
+) {
+    let sum: f64 = e.n.iter().sum();
+    assert!((sum - 1.0).abs() < 1e-13, "{what}: Σ N = {sum}");
+    let grad_sum: SVector<f64, D> = e.grad.iter().sum();
+    assert!(
+        grad_sum.norm() < 1e-12 * inv_h.norm(),
+        "{what}: Σ ∇N = {grad_sum}"
+    );
+    for k in 0..D {
+        let x: f64 = e.nodes.iter().zip(&e.n).map(|(m, n)| m[k] as f64 * n).sum();
+        assert!(
+            (x - xi[k]).abs() < 1e-13,
+            "{what}: Σ N x = {x} vs {}",
+            xi[k]
+        );
+        let g: SVector<f64, D> = e
+            .nodes
+            .iter()
+            .zip(&e.grad)
+            .map(|(m, g)| g * (m[k] as f64 / inv_h[k]))
+            .sum();
+        assert!(
+            (g - SVector::<f64, D>::from_fn(|i, _| f64::from(i == k))).norm() < 1e-12,
+            "{what}: Σ x ∇N = {g}"
+        );
+    }
+}
+
+fn consistency<const D: usize>(seed: u64) {
+    let mut u = Uniform(seed);
+    let inv_h = SVector::<f64, D>::from_fn(|k, _| 2.0 + k as f64);
+    for trial in 0..300 {
+        let xi = SVector::<f64, D>::from_fn(|_, _| u.next());
+        // domains from a point (trial 0) to a full cell wide, stretched up to 4x
+        let scale = if trial == 0 { 0.0 } else { 0.5 * u.next() };
+        let half = SVector::<f64, D>::from_fn(|k, _| scale / inv_h[k]);
+        let f = random_f(&mut u, 4.0);
+        check_consistency(
+            &evaluate::<Linear, D>(&xi, &half, &f, &inv_h),
+            &xi,
+            &inv_h,
+            "linear",
+        );
+        check_consistency(
+            &evaluate::<UGimp, D>(&xi, &half, &f, &inv_h),
+            &xi,
+            &inv_h,
+            "ugimp",
+        );
+        check_consistency(
+            &evaluate::<CpGimp, D>(&xi, &half, &f, &inv_h),
+            &xi,
+            &inv_h,
+            "cpgimp",
+        );
+        let analytic = evaluate::<CpGimpAnalytic, D>(&xi, &half, &f, &inv_h);
+        check_consistency(&analytic, &xi, &inv_h, "cpgimp-analytic");
+        check_consistency(
+            &evaluate::<Cpdi, D>(&xi, &half, &f, &inv_h),
+            &xi,
+            &inv_h,
+            "cpdi",
+        );
+    }
+}
+
+#[test]
+fn every_kernel_is_a_partition_of_unity_reproducing_linear_fields_2d() {
+    consistency::<2>(3);
+}
+
+#[test]
+fn every_kernel_is_a_partition_of_unity_reproducing_linear_fields_3d() {
+    consistency::<3>(5);
+}
+
+/// A point without a domain gets the hat (linear) weights from every kernel.
+#[test]
+fn a_point_without_a_domain_gets_the_linear_weights() {
+    let (xi, inv_h) = (Vector3::new(0.3, 0.7, 0.11), Vector3::new(2.0, 4.0, 0.5));
+    let f = Matrix3::new(1.5, 0.2, 0.0, 0.1, 0.8, 0.0, 0.0, 0.3, 1.1);
+    let reference = evaluate::<Linear, 3>(&xi, &Vector3::zeros(), &f, &inv_h);
+    let check = |e: Evaluation<3>, what: &str| {
+        for (m, (n, g)) in e.nodes.iter().zip(e.n.iter().zip(&e.grad)) {
+            let k = reference.nodes.iter().position(|r| r == m);
+            let (rn, rg) = k.map_or((0.0, Vector3::zeros()), |k| {
+                (reference.n[k], reference.grad[k])
+            });
+            assert!(
+                (n - rn).abs() < 1e-15 && (g - rg).norm() < 1e-14,
+                "{what} at {m:?}"
+            );
+        }
+    };
+    check(
+        evaluate::<UGimp, 3>(&xi, &Vector3::zeros(), &f, &inv_h),
+        "ugimp",
+    );
+    check(
+        evaluate::<CpGimp, 3>(&xi, &Vector3::zeros(), &f, &inv_h),
+        "cpgimp",
+    );
+    check(
+        evaluate::<CpGimpAnalytic, 3>(&xi, &Vector3::zeros(), &f, &inv_h),
+        "cpgimp-analytic",
+    );
+    check(
+        evaluate::<Cpdi, 3>(&xi, &Vector3::zeros(), &f, &inv_h),
+        "cpdi",
+    );
+}
+
+/// The GIMP factor of node m is the hat averaged over the domain: a 2000-point midpoint
+/// rule of (1/2l) ∫ S(x − m) dx per axis, for half-widths up to 2.5 cells (cpGIMP under
+/// stretch); the gradients against central differences of the weights in x_p; analytic
+/// cpGIMP with F = I is uGIMP.
+#[test]
+fn gimp_weights_average_the_hat_and_their_gradients_are_the_derivatives() {
+    let mut u = Uniform(11);
+    let inv_h = nalgebra::Vector2::new(2.0, 5.0);
+    for _ in 0..200 {
+        let xi = nalgebra::Vector2::new(u.next(), u.next());
+        let half = nalgebra::Vector2::new(0.5 * u.next() / inv_h[0], 0.5 * u.next() / inv_h[1]);
+        let f = Matrix3::from_diagonal(&Vector3::new(
+            0.5 + 4.5 * u.next(),
+            0.5 + 4.5 * u.next(),
+            1.0,
+        ));
+        let e = evaluate::<CpGimpAnalytic, 2>(&xi, &half, &f, &inv_h);
+        let l: [f64; 2] = std::array::from_fn(|k| half[k] * f[(k, k)] * inv_h[k]);
+        for (m, n) in e.nodes.iter().zip(&e.n) {
+            let average: f64 = (0..2)
+                .map(|k| {
+                    let samples = 2000;
+                    (0..samples)
+                        .map(|s| {
+                            let x = xi[k] - l[k] + 2.0 * l[k] * (s as f64 + 0.5) / samples as f64;
+                            (1.0 - (x - m[k] as f64).abs()).max(0.0)
+                        })
+                        .sum::<f64>()
+                        / samples as f64
+                })
+                .product();
+            assert!((n - average).abs() < 2e-6, "{n} vs {average}");
+        }
+        for j in 0..2 {
+            let d = 1e-6;
+            let shifted = |s: f64| {
+                let mut x = xi;
+                x[j] += s;
+                evaluate::<CpGimpAnalytic, 2>(&x, &half, &f, &inv_h)
+            };
+            let (up, down) = (shifted(d), shifted(-d));
+            if up.nodes != e.nodes || down.nodes != e.nodes {
+                continue; // the stencil moved: compare only within one stencil
+            }
+            for m in 0..e.n.len() {
+                let fd = (up.n[m] - down.n[m]) / (2.0 * d) * inv_h[j];
+                assert!(
+                    (fd - e.grad[m][j]).abs() < 1e-6 * inv_h[j],
+                    "{fd} vs {}",
+                    e.grad[m][j]
+                );
+            }
+        }
+        let (g, ug) = (
+            evaluate::<CpGimpAnalytic, 2>(&xi, &half, &Matrix3::identity(), &inv_h),
+            evaluate::<UGimp, 2>(&xi, &half, &f, &inv_h),
+        );
+        assert_eq!(g.nodes, ug.nodes);
+        assert_eq!(g.n, ug.n);
+    }
+}
+
+/// Eq. 10.4 by quadrature on the isoparametric map x(ζ) = x_p + R ζ of the domain
+/// (ζ ∈ [−1, 1]ᴰ, multilinear vertex functions Q^j, 2ᴰ-point Gauss rule, exact here):
+/// w_j = ∫ Q^j dx, g_j = ∫ ∇Q^j dx, N^I = Σ_j w_j N^I(x^j) / v, ∇N^I = Σ_j g_j N^I(x^j) / v.
+fn cpdi_by_quadrature<const D: usize>(
+    xi: &SVector<f64, D>,
+    r: &SMatrix<f64, D, D>,
+    inv_h: &SVector<f64, D>,
+) -> Vec<([i64; D], f64, SVector<f64, D>)> {
+    let gauss = 1.0 / 3f64.sqrt();
+    let sign =
+        |j: usize| SVector::<f64, D>::from_fn(|k, _| if (j >> k) & 1 == 1 { 1.0 } else { -1.0 });
+    let mut embedded = Matrix3::identity();
+    embedded.view_mut((0, 0), (D, D)).copy_from(r);
+    let (det, r_inv_t) = (embedded.determinant(), r.try_inverse().unwrap().transpose());
+    let mut volume = 0.0;
+    let mut w = vec![0.0; corners(D)];
+    let mut g = vec![SVector::<f64, D>::zeros(); corners(D)];
+    for q in 0..corners(D) {
+        let zeta = sign(q) * gauss;
+        volume += det; // Gauss weights 1, |det J| = det R
+        for j in 0..corners(D) {
+            let s = sign(j);
+            let q_j: f64 = (0..D).map(|k| 0.5 * (1.0 + s[k] * zeta[k])).product();
+            let dq = SVector::<f64, D>::from_fn(|a, _| {
+                (0..D)
+                    .map(|k| {
+                        if k == a {
+                            0.5 * s[k]
+                        } else {
+                            0.5 * (1.0 + s[k] * zeta[k])
+                        }
+                    })
+                    .product()
+            });
+            w[j] += q_j * det;
+            g[j] += r_inv_t * dq * det;
+        }
+    }
+    let mut out: Vec<([i64; D], f64, SVector<f64, D>)> = Vec::new();
+    for j in 0..corners(D) {
+        let vertex = xi + (r * sign(j)).component_mul(inv_h);
+        let cell: [i64; D] = std::array::from_fn(|k| vertex[k].floor() as i64);
+        let local = SVector::<f64, D>::from_fn(|k, _| vertex[k] - cell[k] as f64);
+        let lw = linear(&local, inv_h);
+        for c in 0..corners(D) {
+            let node: [i64; D] = std::array::from_fn(|k| cell[k] + ((c >> k) & 1) as i64);
+            let entry = match out.iter().position(|e| e.0 == node) {
+                Some(k) => k,
+                None => {
+                    out.push((node, 0.0, SVector::zeros()));
+                    out.len() - 1
+                }
+            };
+            out[entry].1 += w[j] * lw.n[c] / volume;
+            out[entry].2 += g[j] * lw.n[c] / volume;
+        }
+    }
+    out
+}
+
+fn cpdi_against_quadrature<const D: usize>(seed: u64) {
+    let mut u = Uniform(seed);
+    let inv_h = SVector::<f64, D>::from_fn(|k, _| 2.0 + k as f64);
+    for _ in 0..100 {
+        let xi = SVector::<f64, D>::from_fn(|_, _| u.next());
+        let half = SVector::<f64, D>::from_fn(|k, _| (0.05 + 0.45 * u.next()) / inv_h[k]);
+        let f = random_f(&mut u, 3.0);
+        let e = evaluate::<Cpdi, D>(&xi, &half, &f, &inv_h);
+        let r = SMatrix::<f64, D, D>::from_fn(|i, k| f[(i, k)] * half[k]);
+        for (node, n, g) in cpdi_by_quadrature(&xi, &r, &inv_h) {
+            let k = e
+                .nodes
+                .iter()
+                .position(|m| *m == node)
+                .expect("node in the stencil");
+            assert!((e.n[k] - n).abs() < 1e-13, "{} vs {n}", e.n[k]);
+            assert!(
+                (e.grad[k] - g).norm() < 1e-12 * inv_h.norm(),
+                "{} vs {g}",
+                e.grad[k]
+            );
+        }
+    }
+}
+
+/// cpGIMP's vertex form is CPDI of the shear-free part of F.
+#[test]
+fn cpgimp_is_cpdi_without_shear() {
+    let mut u = Uniform(23);
+    let inv_h = Vector3::new(2.0, 3.0, 4.0);
+    for _ in 0..50 {
+        let xi = Vector3::new(u.next(), u.next(), u.next());
+        let half = Vector3::new(0.2 / inv_h[0], 0.1 / inv_h[1], 0.25 / inv_h[2]);
+        let f = random_f(&mut u, 5.0);
+        let diagonal = Matrix3::from_diagonal(&f.diagonal());
+        let (a, b) = (
+            evaluate::<CpGimp, 3>(&xi, &half, &f, &inv_h),
+            evaluate::<Cpdi, 3>(&xi, &half, &diagonal, &inv_h),
+        );
+        assert_eq!((a.nodes, a.n), (b.nodes, b.n));
+    }
+}
+
+#[test]
+fn cpdi_closed_form_equals_the_quadrature_of_eq_10_4() {
+    cpdi_against_quadrature::<2>(17);
+    cpdi_against_quadrature::<3>(19);
+}
+
+#[test]
+fn shape_function_names_round_trip_and_a_wrong_one_lists_the_choices() {
+    for name in ShapeFunction::NAMES {
+        let s: ShapeFunction = name.parse().unwrap();
+        assert_eq!(s.name(), name);
+    }
+    let e = "gimp".parse::<ShapeFunction>().unwrap_err();
+    assert!(e.contains("\"cpdi\"") && e.contains("\"gimp\""), "{e}");
+}
+
+#[test]
+fn the_reach_holds_every_node_a_domain_meets() {
+    assert_eq!(Reach::of(0.0), Reach { support: 2, pad: 0 });
+    assert_eq!(Reach::of(0.5), Reach { support: 3, pad: 1 });
+    assert_eq!(Reach::of(0.25), Reach { support: 3, pad: 1 });
+    assert_eq!(Reach::of(1.2), Reach { support: 5, pad: 2 });
+}
