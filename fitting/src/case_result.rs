@@ -70,6 +70,15 @@ impl CaseResult {
         }
     }
 
+    /// Pass if measured ≥ bound.
+    pub fn at_least(name: impl Into<String>, measured: f64, bound: f64) -> Self {
+        CaseResult {
+            tolerance: format!(">= {}", short(bound)),
+            passed: measured >= bound && measured.is_finite(),
+            ..Self::at_most(name, measured, bound)
+        }
+    }
+
     /// A yes/no check reported as 1 (true) against 1.
     pub fn holds(name: impl Into<String>, ok: bool) -> Self {
         CaseResult {

@@ -1,6 +1,6 @@
 //! Where `mpw verify` finds its reference data: one folder given at run time
 //! (`mpw verify --data DIR`, default `data`, the repository's), so a copied binary runs
-//! the table from anywhere. The folder holds `materials/` (parameter sets),
+//! the table from anywhere. The folder holds `materials/` (parameter sets), `scenes/`,
 //! `experiments/` (the default synthetic set, the 304L and 945 experiment files). The
 //! real records those experiment files name lie in the shared data folder beside the
 //! repository (`DIR/../../shared/data`, the path the files themselves use); the rows on
@@ -26,6 +26,11 @@ impl VerifyData {
     /// The folder of material parameter files.
     pub fn materials(&self) -> PathBuf {
         self.root.join("materials")
+    }
+
+    /// The folder of shipped scenes.
+    pub fn scenes(&self) -> PathBuf {
+        self.root.join("scenes")
     }
 
     /// The shipped synthetic experiment set (`mpw fit`'s default).

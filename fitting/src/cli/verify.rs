@@ -1,7 +1,8 @@
 //! `mpw verify`: every verification case of the project, one table row each (case,
 //! measured, reference, tolerance, pass/fail); exits non-zero if any case fails.
-//! `--charts DIR` also draws the figure 4.5 reproduction, the iso-error maps and the
-//! energy histories of USL, USF and MUSL on Bardenhagen's bar (energies and total drift).
+//! `--charts DIR` also draws the figure 4.5 reproduction, the iso-error maps, the
+//! energy histories of USL, USF and MUSL on Bardenhagen's bar (energies and total drift)
+//! and the truss displacement per kernel.
 
 use crate::chart::{LineChart, Series};
 use crate::heatmap::HeatMap;
@@ -143,13 +144,57 @@ fn bar_energy_chart(out: &Path) -> Result<()> {
     drift.write_png(&out.join("bar_energy_drift.png"))
 }
 
+/// Truss benchmark (thesis §10.2, plane strain, 0.5 m cells): displacement of the top
+/// centre A against time per kernel; a separated run leaves the chart (its upper part
+/// falls away without bound).
+fn truss_chart(scenes: &Path, out: &Path) -> Result<()> {
+    use crate::mpm_verify::truss::truss;
+    use mpm_core::shape::ShapeFunction::{CpGimp, CpGimpAnalytic, Cpdi, Linear, UGimp};
+    const SHOWN: f64 = 4.0; // m
+    let mut chart = LineChart::new(
+        "Truss, plane strain, 0.5 m cells: top-centre displacement per kernel (thesis fig. 10.9)",
+        "t [s]",
+        "displacement of A along the pull [m]",
+    );
+    let plane = scenes.join("truss.toml");
+    for (kernel, n) in [
+        (Linear, 6),
+        (UGimp, 6),
+        (CpGimpAnalytic, 6),
+        (CpGimp, 6),
+        (Cpdi, 6),
+        (Linear, 10),
+        (Cpdi, 40),
+    ] {
+        let run = truss(&plane, kernel, 0.5, n);
+        let separated = run.a_peak() > SHOWN;
+        chart = chart.with(Series {
+            label: format!(
+                "{} n = {n}{}",
+                kernel.name(),
+                if separated {
+                    " (separates: leaves the chart)"
+                } else {
+                    ""
+                }
+            ),
+            points: run
+                .history
+                .iter()
+                .map(|h| (h.t, if h.a > SHOWN { f64::NAN } else { h.a }))
+                .collect(),
+        });
+    }
+    chart.write_png(&out.join("truss_displacement.png"))
+}
+
 pub fn run(args: Args) -> Result<()> {
     let data = VerifyData::new(&args.data);
     let materials = data.materials();
     let mut cases = studies::verify_cases(&materials, args.full)?;
     cases.extend(crate::shpb::verify_cases(&data));
     cases.extend(crate::fit::verify::verify_cases(&data));
-    cases.extend(crate::mpm_verify::verify_cases(&materials, args.full));
+    cases.extend(crate::mpm_verify::verify_cases(&data, args.full));
     cases.extend(crate::shpb_model::verify::verify_cases());
     println!(
         "{:<60} {:>14} {:>14} {:>12} result",
@@ -166,6 +211,7 @@ pub fn run(args: Args) -> Result<()> {
         figure_4_5_chart(&materials, dir)?;
         iso_error_charts(&materials, dir)?;
         bar_energy_chart(dir)?;
+        truss_chart(&data.scenes(), dir)?;
         println!("charts written to {}", dir.display());
     }
     let failed = cases.iter().filter(|c| !c.passed).count();

@@ -10,9 +10,11 @@ pub mod impact;
 pub mod integrators;
 pub mod rigid_contact;
 pub mod taylor;
+pub mod truss;
 pub mod vibration;
 
 use crate::case_result::CaseResult;
+use crate::verify_data::VerifyData;
 use integrators::{Integrator, MassSpring};
 use materials::{load_material, Material};
 use mpm_core::solver::Scheme;
@@ -36,9 +38,10 @@ pub fn test_materials() -> std::path::PathBuf {
     crate::verify_data::VerifyData::repository().materials()
 }
 
-/// Run every MPM verification case with the materials of the folder `materials`; `full`
+/// Run every MPM verification case with the materials and scenes of `data`; `full`
 /// uses the thesis sizes where they differ.
-pub fn verify_cases(materials: &Path, full: bool) -> Vec<CaseResult> {
+pub fn verify_cases(data: &VerifyData, full: bool) -> Vec<CaseResult> {
+    let materials = &data.materials();
     let mut out = Vec::new();
 
     // chapter 5: mass-spring, Δt = 0.1, t = 50
@@ -307,5 +310,8 @@ pub fn verify_cases(materials: &Path, full: bool) -> Vec<CaseResult> {
 
     // section 9.2: plastic impact of a steel disk into a 6061-T6 target
     impact::cases(materials, full, &mut out);
+
+    // section 10.2: the truss
+    truss::cases(&data.scenes(), full, &mut out);
     out
 }

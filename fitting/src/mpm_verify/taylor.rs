@@ -29,6 +29,7 @@ use mpm_core::discretize::{fill, Shape};
 use mpm_core::failure::SimulationError;
 use mpm_core::kinematics::Kinematics;
 use mpm_core::results::largest;
+use mpm_core::shape::ShapeFunction;
 use mpm_core::solver::{Scheme, Settings, Solver};
 use mpm_core::NodeSet;
 use mpm_core::VelocityBc;
@@ -112,10 +113,10 @@ pub const ELASTIC_4340: Impact = Impact {
 };
 
 /// Run the bar to `end` [s] on a grid of `spacing` [m] with `per_cell` particles per cell
-/// and direction.
+/// and direction, with shape functions `kernel` (points' domains the lattice cells).
 pub fn taylor_bar(
     materials: &Path,
-    model: Model,
+    (model, kernel): (Model, ShapeFunction),
     impact: Impact,
     spacing: f64,
     per_cell: usize,
@@ -127,6 +128,7 @@ pub fn taylor_bar(
             let mut settings = Settings::<2>::new(Kinematics::Axisymmetric, spacing);
             settings.scheme = Scheme::Musl;
             settings.safety = 0.3;
+            settings.shape_function = kernel;
             let mut solver = Solver::new(settings);
             solver.velocity_bcs.push(VelocityBc::axis());
             let points = fill(
@@ -137,12 +139,15 @@ pub fn taylor_bar(
                 SVector::repeat(s),
                 Kinematics::Axisymmetric,
             );
-            solver.add_body(
+            let bar = solver.add_body(
                 "bar",
                 super::material(materials, impact.material),
                 &points,
                 SVector::<f64, 2>::new(0.0, -impact.velocity),
             );
+            if kernel.needs_domains() {
+                solver.set_half_size(bar, SVector::repeat(0.5 * s));
+            }
             solver.velocity_bcs.push(VelocityBc::wall(1, 0.0, true));
             run(model, solver, s, end)
         }
@@ -150,6 +155,7 @@ pub fn taylor_bar(
             let mut settings = Settings::<3>::new(Kinematics::Solid, spacing);
             settings.scheme = Scheme::Musl;
             settings.safety = 0.3;
+            settings.shape_function = kernel;
             let mut solver = Solver::new(settings);
             let points: Vec<_> = fill(
                 &Shape::Cylinder {
@@ -163,12 +169,15 @@ pub fn taylor_bar(
             .into_iter()
             .filter(|(x, _)| x[0] > 0.0 && x[1] > 0.0)
             .collect();
-            solver.add_body(
+            let bar = solver.add_body(
                 "bar",
                 super::material(materials, impact.material),
                 &points,
                 SVector::<f64, 3>::new(0.0, 0.0, -impact.velocity),
             );
+            if kernel.needs_domains() {
+                solver.set_half_size(bar, SVector::repeat(0.5 * s));
+            }
             solver.velocity_bcs.push(VelocityBc::wall(2, 0.0, true));
             for axis in [0, 1] {
                 solver
@@ -279,8 +288,22 @@ pub fn cases(materials: &Path, full: bool, out: &mut Vec<CaseResult>) {
     };
     let name = format!("mpm/taylor/dx{:.3}mm", dx * 1e3);
     let (axi, solid) = match (
-        taylor_bar(materials, Model::Axisymmetric, COPPER, dx, 2, 80e-6),
-        taylor_bar(materials, Model::QuarterSolid, COPPER, dx, 2, 80e-6),
+        taylor_bar(
+            materials,
+            (Model::Axisymmetric, ShapeFunction::Linear),
+            COPPER,
+            dx,
+            2,
+            80e-6,
+        ),
+        taylor_bar(
+            materials,
+            (Model::QuarterSolid, ShapeFunction::Linear),
+            COPPER,
+            dx,
+            2,
+            80e-6,
+        ),
     ) {
         (Ok(a), Ok(s)) => (a, s),
         (a, s) => {
@@ -338,7 +361,7 @@ fn refinement_rows(materials: &Path, out: &mut Vec<CaseResult>) {
         .map(|&n| {
             taylor_bar(
                 materials,
-                Model::Axisymmetric,
+                (Model::Axisymmetric, ShapeFunction::Linear),
                 COPPER,
                 RADIUS / n as f64,
                 2,
@@ -363,7 +386,7 @@ fn refinement_rows(materials: &Path, out: &mut Vec<CaseResult>) {
         Err(e) => out.push(CaseResult::holds(format!("{name}: {e}"), false)),
     }
     for n in [6, 12] {
-        match taylor_bar(materials, Model::Axisymmetric, ELASTIC_4340, RADIUS / n as f64, 2, 40e-6) {
+        match taylor_bar(materials, (Model::Axisymmetric, ShapeFunction::Linear), ELASTIC_4340, RADIUS / n as f64, 2, 40e-6) {
             Ok(r) => out.push(CaseResult::info(
                 format!("{name}/elastic-4340-12m_s/max-alpha at {n} cells across R (must be 0: gap, on the axis column)"),
                 r.max_alpha,
@@ -385,7 +408,7 @@ mod tests {
     fn coarse_axisymmetric_and_quarter_bars_agree() {
         let axi = taylor_bar(
             &test_materials(),
-            Model::Axisymmetric,
+            (Model::Axisymmetric, ShapeFunction::Linear),
             COPPER,
             COARSE,
             2,
@@ -394,7 +417,7 @@ mod tests {
         .unwrap();
         let solid = taylor_bar(
             &test_materials(),
-            Model::QuarterSolid,
+            (Model::QuarterSolid, ShapeFunction::Linear),
             COPPER,
             COARSE,
             2,
@@ -449,7 +472,7 @@ mod refinement {
             for &k in *ks {
                 let r = taylor_bar(
                     &test_materials(),
-                    *model,
+                    (*model, ShapeFunction::Linear),
                     COPPER,
                     commensurate_spacing(k),
                     2,
