@@ -35,6 +35,8 @@ enum Command {
     Simulate(fitting::cli::simulate::Args),
     /// Measure MPM throughput (particle-steps/s with 1 and 2 threads) and bytes per particle.
     BenchMpm(fitting::cli::bench_mpm::Args),
+    /// Every shape function on the truss and the Taylor bar: error against wall time.
+    Kernels(fitting::cli::kernels::Args),
 }
 
 fn main() {
@@ -74,5 +76,6 @@ fn dispatch(command: Command) -> anyhow::Result<()> {
         Command::Synth(a) => fitting::cli::synth::run(a),
         Command::Simulate(a) => fitting::cli::simulate::run(a),
         Command::BenchMpm(a) => fitting::cli::bench_mpm::run(a),
+        Command::Kernels(a) => fitting::cli::kernels::run(a),
     }
 }

@@ -18,6 +18,7 @@ use anyhow::Result;
 use materials::signal::TimeSignal;
 use materials::Material;
 use mpm_core::discretize::{fill, Shape};
+use mpm_core::shape::{Reach, ShapeFunction};
 use mpm_core::{Kinematics, RigidBody, Scheme, Settings, Solver};
 use nalgebra::{SVector, Vector3};
 use rayon::prelude::*;
@@ -48,12 +49,38 @@ pub struct Args {
     /// grid and back twice a step).
     #[arg(long, default_value = "usl", value_parser = ["usl", "usf", "musl"])]
     pub scheme: String,
+    /// Shape functions of (a) and (b), each measured: linear, ugimp, cpgimp,
+    /// cpgimp-analytic, cpdi (points' domains the lattice cells).
+    #[arg(long, value_delimiter = ',', default_value = "linear")]
+    pub kernels: Vec<ShapeFunction>,
+}
+
+/// Cost per particle-step against linear's at 2 threads that issue 10 allows.
+fn kernel_cost_target(kernel: ShapeFunction) -> f64 {
+    match kernel {
+        ShapeFunction::Linear => 1.0,
+        ShapeFunction::Cpdi => 3.0,
+        _ => 2.0,
+    }
+}
+
+/// Bytes per particle with `kernel` in 3D (particles, history, step scratch with the
+/// weights of the stencil at the start, 2 points per cell; grid not counted).
+fn bytes_per_particle(kernel: ShapeFunction) -> usize {
+    let reach = match kernel.needs_domains() {
+        true => Reach::of(0.25),
+        false => Reach::CELL,
+    };
+    mpm_core::Particles::<3>::BYTES_PER_PARTICLE
+        + std::mem::size_of::<materials::State<f64>>()
+        + mpm_core::solver::scratch_bytes_per_particle(reach.nodes(3))
 }
 
 /// The scheme named by `--scheme`, without bulk viscosity (as the targets were set).
-fn settings(spacing: f64, scheme: &str) -> Settings<3> {
+fn settings(spacing: f64, scheme: &str, kernel: ShapeFunction) -> Settings<3> {
     let mut settings = Settings::<3>::new(Kinematics::Solid, spacing);
     settings.thesis_scheme();
+    settings.shape_function = kernel;
     settings.scheme = match scheme {
         "usf" => Scheme::Usf,
         "musl" => Scheme::Musl,
@@ -63,8 +90,8 @@ fn settings(spacing: f64, scheme: &str) -> Settings<3> {
 }
 
 /// (a): a 40 × 40 × 40 point Neo-Hooke block (steel-like) spinning about z.
-fn block(scheme: &str) -> Solver<3> {
-    let mut s = Solver::new(settings(0.01, scheme));
+fn block(scheme: &str, kernel: ShapeFunction) -> Solver<3> {
+    let mut s = Solver::new(settings(0.01, scheme, kernel));
     let points = fill(
         &Shape::Box {
             min: Vector3::zeros(),
@@ -73,12 +100,15 @@ fn block(scheme: &str) -> Solver<3> {
         Vector3::repeat(0.005),
         Kinematics::Solid,
     );
-    s.add_body(
+    let body = s.add_body(
         "block",
         Arc::new(materials::NeoHooke::new(200e9, 0.3, 7850.0)),
         &points,
         SVector::zeros(),
     );
+    if kernel.needs_domains() {
+        s.set_half_size(body, Vector3::repeat(0.0025));
+    }
     for i in 0..s.particles.len() {
         let x = s.particles.position[i] - Vector3::repeat(0.1);
         s.particles.velocity[i] = Vector3::new(-x[1], x[0], 0.0) * 200.0;
@@ -88,17 +118,20 @@ fn block(scheme: &str) -> Solver<3> {
 
 /// (b): a Ø10 × 10 mm cylinder between platens closing at 2 × 10 m/s, μ = 0.1, already
 /// flowing with them: v = ε̇ (x/2, y/2, h/2 − z), ε̇ = 20 m/s / h.
-fn compression(material: Arc<dyn Material>, scheme: &str) -> Solver<3> {
+fn compression(material: Arc<dyn Material>, scheme: &str, kernel: ShapeFunction) -> Solver<3> {
     let (r, h) = (0.005, 0.01);
     let rate = 20.0 / h;
-    let mut s = Solver::new(settings(0.000_461, scheme));
+    let mut s = Solver::new(settings(0.000_461, scheme, kernel));
     let shape = Shape::Cylinder {
         start: Vector3::zeros(),
         end: Vector3::new(0.0, 0.0, h),
         radius: r,
     };
     let points = fill(&shape, Vector3::repeat(0.000_230_5), Kinematics::Solid);
-    s.add_body("cylinder", material, &points, SVector::zeros());
+    let body = s.add_body("cylinder", material, &points, SVector::zeros());
+    if kernel.needs_domains() {
+        s.set_half_size(body, Vector3::repeat(0.000_115_25));
+    }
     for i in 0..s.particles.len() {
         let x = s.particles.position[i];
         s.particles.velocity[i] = Vector3::new(0.5 * x[0], 0.5 * x[1], 0.5 * h - x[2]) * rate;
@@ -116,11 +149,12 @@ fn compression(material: Arc<dyn Material>, scheme: &str) -> Solver<3> {
     s
 }
 
-/// One throughput case: its key for `--cases`, label, scene and 2-thread target.
+/// One throughput case: its key for `--cases`, label, scene with a kernel and 2-thread
+/// target (linear).
 struct Case<'a> {
     key: char,
     name: &'static str,
-    make: Box<dyn Fn() -> Solver<3> + 'a>,
+    make: Box<dyn Fn(ShapeFunction) -> Solver<3> + 'a>,
     target: f64,
 }
 
@@ -178,6 +212,50 @@ fn measure(
     })
 }
 
+/// Case `case` with every kernel of `--kernels` at every thread count; a kernel's cost per
+/// particle-step against linear's at 2 threads is checked against issue 10's targets
+/// when linear is measured too.
+fn kernel_rows(case: &Case<'_>, args: &Args) -> Result<()> {
+    let mut linear_rate = std::collections::HashMap::new();
+    for &kernel in &args.kernels {
+        for &threads in &args.threads {
+            let (m, n, ts) = measure(&|| (case.make)(kernel), threads, args)?;
+            if kernel == ShapeFunction::Linear {
+                linear_rate.insert(threads, m.rate);
+            }
+            let verdict = match (threads, linear_rate.get(&threads)) {
+                (2, Some(&linear)) if kernel != ShapeFunction::Linear => {
+                    let (cost, allowed) = (linear / m.rate, kernel_cost_target(kernel));
+                    let met = if cost <= allowed { "met" } else { "NOT met" };
+                    format!("  ({cost:.2}x linear's cost, target <= {allowed}x: {met})")
+                }
+                (2, _) if kernel == ShapeFunction::Linear => {
+                    let met = if m.rate >= case.target {
+                        "met"
+                    } else {
+                        "NOT met"
+                    };
+                    format!("  (target {:.1e}: {met})", case.target)
+                }
+                _ => String::new(),
+            };
+            println!(
+                "{:<34} {:>15} {n:>9} {threads:>8} {:>16.3e} {:>9.0}% {:>9.0}% {:>7.0}%{verdict}",
+                case.name,
+                kernel.name(),
+                m.rate,
+                100.0 * m.material_share,
+                100.0 * (1.0 - m.material_share),
+                100.0 * m.plastic,
+            );
+            if threads == args.threads[0] {
+                println!("    {ts}");
+            }
+        }
+    }
+    Ok(())
+}
+
 pub fn run(args: Args) -> Result<()> {
     let copper: Arc<dyn Material> = Arc::new(materials::load_material(&args.material)?.model);
     for case in &args.cases {
@@ -190,54 +268,40 @@ pub fn run(args: Args) -> Result<()> {
         Case {
             key: 'a',
             name: "(a) Neo-Hooke block",
-            make: Box::new(|| block(&args.scheme)),
+            make: Box::new(|k| block(&args.scheme, k)),
             target: 5e6,
         },
         Case {
             key: 'b',
             name: "(b) JC cylinder between platens",
-            make: Box::new(|| compression(copper.clone(), &args.scheme)),
+            make: Box::new(|k| compression(copper.clone(), &args.scheme, k)),
             target: 1.5e6,
         },
     ];
-    let bytes = mpm_core::Particles::<3>::BYTES_PER_PARTICLE
-        + std::mem::size_of::<materials::State<f64>>()
-        + mpm_core::solver::SCRATCH_BYTES_PER_PARTICLE;
-    println!(
-        "memory: {bytes} bytes per particle (particles, history, step scratch; grid not counted)"
-    );
-    if args.cases.iter().any(|c| matches!(c, 'a' | 'b')) {
-        println!("scheme of (a), (b): {}", settings(1.0, &args.scheme).scheme);
+    for kernel in &args.kernels {
         println!(
-            "{:<34} {:>9} {:>8} {:>16} {:>10} {:>10} {:>8}",
-            "case", "particles", "threads", "particle-steps/s", "material", "transfers", "plastic"
+            "memory, {}: {} bytes per particle (particles, history, step scratch with the first step's stencil; grid not counted)",
+            kernel.name(),
+            bytes_per_particle(*kernel)
         );
     }
-    for Case {
-        name, make, target, ..
-    } in cases.iter().filter(|c| args.cases.contains(&c.key))
-    {
-        for &threads in &args.threads {
-            let (m, n, ts) = measure(make.as_ref(), threads, &args)?;
-            println!(
-                "{name:<34} {n:>9} {threads:>8} {:>16.3e} {:>9.0}% {:>9.0}% {:>7.0}%{}",
-                m.rate,
-                100.0 * m.material_share,
-                100.0 * (1.0 - m.material_share),
-                100.0 * m.plastic,
-                if threads == 2 {
-                    format!(
-                        "  (target {target:.1e}: {})",
-                        if m.rate >= *target { "met" } else { "NOT met" }
-                    )
-                } else {
-                    String::new()
-                }
-            );
-            if threads == args.threads[0] {
-                println!("    {ts}");
-            }
-        }
+    if args.cases.iter().any(|c| matches!(c, 'a' | 'b')) {
+        let scheme = settings(1.0, &args.scheme, ShapeFunction::Linear).scheme;
+        println!("scheme of (a), (b): {scheme}");
+        println!(
+            "{:<34} {:>15} {:>9} {:>8} {:>16} {:>10} {:>10} {:>8}",
+            "case",
+            "kernel",
+            "particles",
+            "threads",
+            "particle-steps/s",
+            "material",
+            "transfers",
+            "plastic"
+        );
+    }
+    for case in cases.iter().filter(|c| args.cases.contains(&c.key)) {
+        kernel_rows(case, &args)?;
     }
     small_cases(&args)
 }

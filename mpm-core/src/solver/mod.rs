@@ -34,7 +34,6 @@ use crate::material_block::MaterialBlock;
 use crate::observer::Observer;
 use crate::particles::Particles;
 use crate::rigid::RigidBody;
-use crate::shape::corners;
 use crate::shift::GridShift;
 use crate::watchdog::Watchdog;
 use crate::weights::WeightCache;
@@ -50,10 +49,11 @@ pub struct RigidContact<const D: usize> {
     pub contact: ContactState<D>,
 }
 
-/// Bytes of per-particle scratch the solver keeps between steps (work arrays and the
-/// linear shape-function weights).
-pub const SCRATCH_BYTES_PER_PARTICLE: usize =
-    2 * 3 * 8 + 8 + 4 + WeightCache::<3>::bytes_per_particle(corners(3));
+/// Bytes of per-particle scratch the solver keeps between steps in 3D: work arrays and
+/// the shape-function weights of `stencil_nodes` nodes (8 for linear, `shape::Reach`).
+pub const fn scratch_bytes_per_particle(stencil_nodes: usize) -> usize {
+    2 * 3 * 8 + 8 + 4 + WeightCache::<3>::bytes_per_particle(stencil_nodes)
+}
 
 /// Per-particle work arrays of one step.
 #[derive(Clone, Default)]
