@@ -4,7 +4,6 @@
 //! sizes unless `full`). The table runs once per CI run, as `mpw verify` (which fails on
 //! any failing row); the modules' unit tests keep small checks of their own.
 
-pub mod cell_crossing;
 pub mod collision;
 pub mod cook;
 pub mod impact;
