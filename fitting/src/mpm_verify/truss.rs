@@ -309,4 +309,27 @@ mod tests {
         );
         assert!((cpdi.a_peak() - 1.64).abs() < 0.05, "{}", cpdi.a_peak());
     }
+
+    /// Same inputs, same numbers, whatever the thread count: CPDI and analytic cpGIMP
+    /// (wide, stretching stencils through the parallel scatter) on 1 and 2 threads.
+    #[test]
+    fn domain_kernels_give_the_same_numbers_on_one_and_two_threads() {
+        let plane = crate::verify_data::VerifyData::repository()
+            .scenes()
+            .join("truss.toml");
+        for kernel in [ShapeFunction::Cpdi, ShapeFunction::CpGimpAnalytic] {
+            let on = |threads| {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                pool.install(|| truss(&plane, kernel, 0.5, 10))
+            };
+            let (one, two) = (on(1), on(2));
+            assert_eq!(one.history.len(), two.history.len());
+            for (a, b) in one.history.iter().zip(&two.history) {
+                assert_eq!((a.t, a.a, a.gap), (b.t, b.a, b.gap), "{}", kernel.name());
+            }
+        }
+    }
 }
