@@ -10,18 +10,23 @@
 //! cells that hold its vertices. Σ_I N^I = 1 and Σ_I ∇N^I = 0 exactly; the weights
 //! reproduce linear fields. A point without a domain gets the linear weights.
 
+use super::domain::{Deformed, Follow, Stretched};
 use super::{corners, linear, node_index, Kernel, Point, Reach};
 use crate::grid::floor_i64;
 use nalgebra::{Matrix3, SMatrix, SVector};
+use std::marker::PhantomData;
+
+/// The vertex form with the domain of rule `M`.
+pub struct Vertices<M>(PhantomData<M>);
 
 /// CPDI1: the domain deformed by the whole F, R = F diag(a).
-pub struct Cpdi;
+pub type Cpdi = Vertices<Deformed>;
 
 /// cpGIMP as the thesis runs it, "a CPDI category" (§10.1): the vertex form with the
 /// domain stretched by the diagonal of F only, R = diag(F_kk a_k) (shear neglected).
-pub struct CpGimp;
+pub type CpGimp = Vertices<Stretched>;
 
-impl<const D: usize> Kernel<D> for Cpdi {
+impl<M: Follow, const D: usize> Kernel<D> for Vertices<M> {
     const DOMAIN: bool = true;
 
     fn extent(
@@ -29,7 +34,7 @@ impl<const D: usize> Kernel<D> for Cpdi {
         f: &Matrix3<f64>,
         inv_h: &SVector<f64, D>,
     ) -> SVector<f64, D> {
-        vertex_extent(&SMatrix::from_fn(|i, k| f[(i, k)] * half[k]), inv_h)
+        vertex_extent(&M::edges(half, f), inv_h)
     }
 
     fn evaluate(
@@ -38,40 +43,8 @@ impl<const D: usize> Kernel<D> for Cpdi {
         n: &mut [f64],
         grad: &mut [SVector<f64, D>],
     ) -> [i64; D] {
-        vertex_weights(
-            p,
-            &SMatrix::from_fn(|i, k| p.f[(i, k)] * p.half[k]),
-            reach,
-            n,
-            grad,
-        )
+        vertex_weights(p, &M::edges(p.half, p.f), reach, n, grad)
     }
-}
-
-impl<const D: usize> Kernel<D> for CpGimp {
-    const DOMAIN: bool = true;
-
-    fn extent(
-        half: &SVector<f64, D>,
-        f: &Matrix3<f64>,
-        inv_h: &SVector<f64, D>,
-    ) -> SVector<f64, D> {
-        vertex_extent(&stretched(half, f), inv_h)
-    }
-
-    fn evaluate(
-        p: &Point<'_, D>,
-        reach: Reach,
-        n: &mut [f64],
-        grad: &mut [SVector<f64, D>],
-    ) -> [i64; D] {
-        vertex_weights(p, &stretched(p.half, p.f), reach, n, grad)
-    }
-}
-
-/// R = diag(F_kk a_k) [m].
-fn stretched<const D: usize>(half: &SVector<f64, D>, f: &Matrix3<f64>) -> SMatrix<f64, D, D> {
-    SMatrix::from_fn(|i, k| if i == k { f[(k, k)] * half[k] } else { 0.0 })
 }
 
 /// e_i = Σ_k |R_ik| / h_i: the vertices' largest distance from the point per axis [cells].

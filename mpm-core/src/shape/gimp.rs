@@ -16,9 +16,11 @@
 //!   neglected); l may exceed 1/2, the truss stretches 800 %. The thesis's cpGIMP is the
 //!   vertex form of module `cpdi` instead; on the truss the two differ (`mpw verify`).
 
+use super::domain::{Fixed, Follow, Stretched};
 use super::{node_index, Kernel, Point, Reach};
 use crate::grid::floor_i64;
 use nalgebra::{Matrix3, SVector};
+use std::marker::PhantomData;
 
 /// Most stencil nodes along one axis.
 pub const MAX_SUPPORT: usize = 32;
@@ -27,36 +29,17 @@ pub const MAX_SUPPORT: usize = 32;
 /// lose digits to cancellation, and differs from the hat by O(l)).
 const POINT_WIDTH: f64 = 1e-9;
 
+/// GIMP with the box domain of rule `M`: its half-widths l_k = |R_kk| / h_k.
+pub struct Gimp<M>(PhantomData<M>);
+
 /// Uniform GIMP: the reference domain.
-pub struct UGimp;
+pub type UGimp = Gimp<Fixed>;
 
 /// Convected-particle GIMP, analytic: the hat averaged over the domain stretched by the
 /// diagonal of F.
-pub struct CpGimpAnalytic;
+pub type CpGimpAnalytic = Gimp<Stretched>;
 
-impl<const D: usize> Kernel<D> for UGimp {
-    const DOMAIN: bool = true;
-
-    fn extent(
-        half: &SVector<f64, D>,
-        _: &Matrix3<f64>,
-        inv_h: &SVector<f64, D>,
-    ) -> SVector<f64, D> {
-        half.component_mul(inv_h)
-    }
-
-    #[inline]
-    fn evaluate(
-        p: &Point<'_, D>,
-        reach: Reach,
-        n: &mut [f64],
-        grad: &mut [SVector<f64, D>],
-    ) -> [i64; D] {
-        tensor_product(p, &Self::extent(p.half, p.f, p.inv_h), reach, n, grad)
-    }
-}
-
-impl<const D: usize> Kernel<D> for CpGimpAnalytic {
+impl<M: Follow, const D: usize> Kernel<D> for Gimp<M> {
     const DOMAIN: bool = true;
 
     fn extent(
@@ -64,7 +47,7 @@ impl<const D: usize> Kernel<D> for CpGimpAnalytic {
         f: &Matrix3<f64>,
         inv_h: &SVector<f64, D>,
     ) -> SVector<f64, D> {
-        SVector::from_fn(|k, _| half[k] * f[(k, k)].abs() * inv_h[k])
+        M::edges(half, f).diagonal().abs().component_mul(inv_h)
     }
 
     #[inline]

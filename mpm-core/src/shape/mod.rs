@@ -13,11 +13,12 @@
 //! without a domain (a_k = 0) gets the linear weights from every kernel.
 
 mod cpdi;
+pub mod domain;
 mod gimp;
 mod linear;
 
-pub use cpdi::{CpGimp, Cpdi};
-pub use gimp::{CpGimpAnalytic, UGimp, MAX_SUPPORT};
+pub use cpdi::{CpGimp, Cpdi, Vertices};
+pub use gimp::{CpGimpAnalytic, Gimp, UGimp, MAX_SUPPORT};
 pub use linear::{linear, CellWeights, Linear};
 
 use nalgebra::{Matrix3, SVector};
