@@ -124,8 +124,9 @@ mod tests {
     fn limits_follow_from_the_scene() {
         let w = dog();
         assert_eq!(w.bounds_at(0.0).speed, 120.0);
-        assert_eq!(w.reach, 6.0); // diagonal 5 m plus ten 0.1 m cells
-                                  // a body force of 1000 m/s² adds free fall: 100 m/s by t = 0.1 s, twice over
+        // diagonal 5 m plus ten 0.1 m cells
+        assert_eq!(w.reach, 6.0);
+        // a body force of 1000 m/s² adds free fall: 100 m/s by t = 0.1 s, twice over
         let x = [Vector2::new(0.0, 0.0), Vector2::new(3.0, 4.0)];
         let falling = Watchdog::new(&x, 0.1, (10.0, 100.0, 1000.0), 0.25);
         assert_eq!(falling.bounds_at(0.1).speed, 320.0);

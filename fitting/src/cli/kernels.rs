@@ -32,14 +32,6 @@ pub struct Args {
     pub full: bool,
 }
 
-const KERNELS: [ShapeFunction; 5] = [
-    ShapeFunction::Linear,
-    ShapeFunction::UGimp,
-    ShapeFunction::CpGimpAnalytic,
-    ShapeFunction::CpGimp,
-    ShapeFunction::Cpdi,
-];
-
 /// Errors above this [%] are drawn off the chart.
 const SHOWN: f64 = 50.0;
 
@@ -88,7 +80,7 @@ fn truss_study(data: &VerifyData, csv: &mut String) -> Result<Vec<Point>> {
         "kernel", "n", "particles", "wall s", "peak m", "error %"
     );
     let mut points = Vec::new();
-    for kernel in KERNELS {
+    for kernel in ShapeFunction::ALL {
         for n in [6, 10, 20] {
             let run = truss(&plane, kernel, 0.5, n);
             let error = 100.0 * (run.a_peak() / reference - 1.0);
@@ -99,7 +91,7 @@ fn truss_study(data: &VerifyData, csv: &mut String) -> Result<Vec<Point>> {
                 run.wall_time,
                 run.a_peak(),
                 error,
-                if run.separation() > (1.0 / n as f64 + reference) / 0.5 {
+                if run.separation() > run.separation_limit(reference) {
                     "  separates"
                 } else {
                     ""
@@ -136,7 +128,7 @@ fn taylor_study(data: &VerifyData, full: bool, csv: &mut String) -> Result<Vec<P
         "kernel", "n", "particles", "wall s", "L_f mm", "error %"
     );
     let mut points = Vec::new();
-    for kernel in KERNELS {
+    for kernel in ShapeFunction::ALL {
         for &n in levels {
             let r = taylor::taylor_bar(
                 &materials,
@@ -177,7 +169,7 @@ fn taylor_study(data: &VerifyData, full: bool, csv: &mut String) -> Result<Vec<P
 /// |error| against wall time, one line per kernel through its resolutions.
 fn chart(title: &str, y_label: &str, points: &[Point]) -> LineChart {
     let mut chart = LineChart::new(title, "wall time of one run, 2 threads [s]", y_label);
-    for kernel in KERNELS {
+    for kernel in ShapeFunction::ALL {
         let mine: Vec<&Point> = points.iter().filter(|p| p.kernel == kernel).collect();
         let off = mine.iter().any(|p| p.error.abs() > SHOWN);
         let resolutions: Vec<String> = mine.iter().map(|p| p.n.to_string()).collect();

@@ -106,15 +106,19 @@ fn describe<const D: usize>(s: &Solver<D>) -> Vec<String> {
 
 /// Read and validate a scene file.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
+    from_description(&read(path)?, path)
+}
+
+/// Read a scene file's description, to change it in code before `from_description`.
+pub fn read(path: &Path) -> Result<SceneFile, SceneError> {
     let text = std::fs::read_to_string(path).map_err(|reason| SceneError::Io {
         file: path.into(),
         reason,
     })?;
-    let spec: SceneFile = toml::from_str(&text).map_err(|e| SceneError::Syntax {
+    toml::from_str(&text).map_err(|e| SceneError::Syntax {
         file: path.into(),
         message: e.to_string(),
-    })?;
-    from_description(&spec, path)
+    })
 }
 
 /// Check and discretize a scene description, read from a file or made in code; `file`

@@ -63,7 +63,8 @@ fn vertex_weights<const D: usize>(
     n: &mut [f64],
     grad: &mut [SVector<f64, D>],
 ) -> [i64; D] {
-    let Some(r_inv) = r.try_inverse().filter(|_| p.half.min() > 0.0) else {
+    let r_inv = (p.half.min() > 0.0).then(|| r.try_inverse()).flatten();
+    let Some(r_inv_t) = r_inv.map(|r_inv| r_inv.transpose()) else {
         return point_weights(p, reach, n, grad);
     };
     let e = vertex_extent(r, p.inv_h);
@@ -76,7 +77,7 @@ fn vertex_weights<const D: usize>(
         let vertex = p.xi + (r * sign).component_mul(p.inv_h);
         let cell: [i64; D] = std::array::from_fn(|k| floor_i64(vertex[k]));
         let local = SVector::<f64, D>::from_fn(|k, _| vertex[k] - cell[k] as f64);
-        let g = r_inv.transpose() * sign * share;
+        let g = r_inv_t * sign;
         for corner in 0..corners(D) {
             let mut node = 0;
             let mut weight = share;
@@ -90,7 +91,7 @@ fn vertex_weights<const D: usize>(
                 weight *= if upper == 1 { local[k] } else { 1.0 - local[k] };
             }
             n[node] += weight;
-            grad[node] += g * (weight / share);
+            grad[node] += g * weight;
         }
     }
     first

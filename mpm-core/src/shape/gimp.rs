@@ -17,13 +17,10 @@
 //!   vertex form of module `cpdi` instead; on the truss the two differ (`mpw verify`).
 
 use super::domain::{Fixed, Follow, Stretched};
-use super::{node_index, Kernel, Point, Reach};
+use super::{node_index, Kernel, Point, Reach, MAX_SUPPORT};
 use crate::grid::floor_i64;
 use nalgebra::{Matrix3, SVector};
 use std::marker::PhantomData;
-
-/// Most stencil nodes along one axis.
-pub const MAX_SUPPORT: usize = 32;
 
 /// Half-widths below this [cells] are points: the hat weights (the averaged form would
 /// lose digits to cancellation, and differs from the hat by O(l)).

@@ -18,7 +18,7 @@ mod gimp;
 mod linear;
 
 pub use cpdi::{CpGimp, Cpdi, Vertices};
-pub use gimp::{CpGimpAnalytic, Gimp, UGimp, MAX_SUPPORT};
+pub use gimp::{CpGimpAnalytic, Gimp, UGimp};
 pub use linear::{linear, CellWeights, Linear};
 
 use nalgebra::{Matrix3, SVector};
@@ -31,6 +31,10 @@ pub const fn corners(d: usize) -> usize {
 /// Most stencil nodes a point may reach (`support`ᴰ): in 3D a domain half-extent of
 /// 4 cells, in 2D 14.5 cells.
 pub const MAX_STENCIL_NODES: usize = 1000;
+
+/// Most stencil nodes along one axis (the GIMP factors' fixed arrays; in 2D and 3D
+/// `MAX_STENCIL_NODES` is the tighter bound).
+pub const MAX_SUPPORT: usize = 32;
 
 /// One point as a kernel sees it.
 #[derive(Debug, Clone, Copy)]
@@ -70,6 +74,12 @@ impl Reach {
     /// Stencil nodes per point, supportᴰ.
     pub fn nodes(&self, d: usize) -> usize {
         self.support.pow(d as u32)
+    }
+
+    /// Whether a `d`-dimensional stencil of this reach stays within `MAX_STENCIL_NODES`
+    /// and `MAX_SUPPORT`.
+    pub fn fits(&self, d: usize) -> bool {
+        self.nodes(d) <= MAX_STENCIL_NODES && self.support <= MAX_SUPPORT
     }
 }
 
@@ -112,6 +122,15 @@ pub enum ShapeFunction {
 }
 
 impl ShapeFunction {
+    /// Every kernel, in the order of `NAMES`.
+    pub const ALL: [ShapeFunction; 5] = [
+        ShapeFunction::Linear,
+        ShapeFunction::UGimp,
+        ShapeFunction::CpGimp,
+        ShapeFunction::CpGimpAnalytic,
+        ShapeFunction::Cpdi,
+    ];
+
     /// The names of input files.
     pub const NAMES: [&'static str; 5] = ["linear", "ugimp", "cpgimp", "cpgimp-analytic", "cpdi"];
 
@@ -130,19 +149,15 @@ impl std::str::FromStr for ShapeFunction {
     type Err = String;
 
     fn from_str(name: &str) -> Result<Self, String> {
-        const ALL: [ShapeFunction; 5] = [
-            ShapeFunction::Linear,
-            ShapeFunction::UGimp,
-            ShapeFunction::CpGimp,
-            ShapeFunction::CpGimpAnalytic,
-            ShapeFunction::Cpdi,
-        ];
-        ALL.into_iter().find(|s| s.name() == name).ok_or_else(|| {
-            format!(
-                "\"{name}\", expected one of {}",
-                Self::NAMES.map(|n| format!("\"{n}\"")).join(", ")
-            )
-        })
+        Self::ALL
+            .into_iter()
+            .find(|s| s.name() == name)
+            .ok_or_else(|| {
+                format!(
+                    "\"{name}\", expected one of {}",
+                    Self::NAMES.map(|n| format!("\"{n}\"")).join(", ")
+                )
+            })
     }
 }
 

@@ -5,10 +5,7 @@
 
 use super::Solver;
 use crate::failure::{Cause, SimulationError};
-use crate::shape::{
-    CpGimp, CpGimpAnalytic, Cpdi, Kernel, Linear, Reach, ShapeFunction, UGimp, MAX_STENCIL_NODES,
-    MAX_SUPPORT,
-};
+use crate::shape::{CpGimp, CpGimpAnalytic, Cpdi, Kernel, Linear, Reach, ShapeFunction, UGimp};
 use materials::limits::GRID_NODES;
 use nalgebra::SVector;
 use rayon::prelude::*;
@@ -103,14 +100,10 @@ impl<const D: usize> Solver<D> {
                 },
             );
         let reach = Reach::of(extent);
-        if reach.nodes(D) > MAX_STENCIL_NODES || reach.support > MAX_SUPPORT || !extent.is_finite()
-        {
+        if !reach.fits(D) || !extent.is_finite() {
             let limit = (1..)
                 .map(|e| e as f64 * 0.5)
-                .take_while(|&e| {
-                    Reach::of(e).nodes(D) <= MAX_STENCIL_NODES
-                        && Reach::of(e).support <= MAX_SUPPORT
-                })
+                .take_while(|&e| Reach::of(e).fits(D))
                 .last()
                 .unwrap_or(0.0);
             return Err(self.failure(Some(widest), Cause::DomainTooLarge { extent, limit }));
