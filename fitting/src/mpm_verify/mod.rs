@@ -4,6 +4,7 @@
 //! sizes unless `full`). The table runs once per CI run, as `mpw verify` (which fails on
 //! any failing row); the modules' unit tests keep small checks of their own.
 
+pub mod cell_crossing;
 pub mod collision;
 pub mod cook;
 pub mod impact;
@@ -313,5 +314,7 @@ pub fn verify_cases(data: &VerifyData, full: bool) -> Vec<CaseResult> {
 
     // section 10.2: the truss
     truss::cases(&data.scenes(), full, &mut out);
+    // chapter 10: the cell-crossing error per kernel
+    cell_crossing::cases(materials, &mut out);
     out
 }
