@@ -21,6 +21,7 @@ pub mod failure;
 pub mod grid;
 pub mod kinematics;
 pub mod material_block;
+pub mod mesh;
 pub mod observer;
 pub mod particles;
 pub mod rigid;

@@ -6,6 +6,7 @@
 //! V (current) and V0 (reference) [m³] (plane strain: per metre of thickness; axisymmetric:
 //! the full ring 2π r A), Cauchy stress σ [Pa], external force [N].
 
+use crate::shape::Hex;
 use nalgebra::{Matrix3, SVector};
 
 #[derive(Debug, Clone, Default)]
@@ -29,6 +30,10 @@ pub struct Particles<const D: usize> {
     /// domain is not given. Contact uses it: a rigid surface touches the domain, not the
     /// centre (module `contact`).
     pub half_size: Vec<SVector<f64, D>>,
+    /// Reference hexahedral domains of the `cpdi-hex` kernel (module `shape::hex`): empty
+    /// unless a body gave them or that kernel runs, then one per point (`Hex::none()` for
+    /// a point that `Solver::initialize` gives its box).
+    pub hex: Vec<Hex<D>>,
 }
 
 impl<const D: usize> Particles<D> {
@@ -60,6 +65,9 @@ impl<const D: usize> Particles<D> {
         self.applied_force.push(SVector::zeros());
         self.body.push(body);
         self.half_size.push(SVector::zeros());
+        if !self.hex.is_empty() {
+            self.hex.push(Hex::none());
+        }
     }
 
     /// Bytes of particle storage per particle (excluding material history and solver

@@ -6,7 +6,7 @@
 //! step's last stage).
 
 use crate::grid::Grid;
-use crate::shape::{Kernel, Point, Reach};
+use crate::shape::{Hex, Kernel, Point, Reach};
 use nalgebra::{Matrix3, SVector};
 use rayon::prelude::*;
 
@@ -37,14 +37,14 @@ pub struct Stencil<'a, const D: usize> {
 
 impl<const D: usize> WeightCache<D> {
     /// Evaluate kernel `K` with stencils of `reach` at every position on `grid` (fitted to
-    /// hold the stencils), for points with reference domain half-widths `half` [m] and
-    /// deformation gradients `f`.
+    /// hold the stencils), for points with reference domain half-widths `half` [m],
+    /// deformation gradients `f` and hexahedral domains `hex` (empty unless `CpdiHex`).
     pub fn compute<K: Kernel<D>>(
         &mut self,
         grid: &Grid<D>,
         reach: Reach,
         positions: &[SVector<f64, D>],
-        (half, f): (&[SVector<f64, D>], &[Matrix3<f64>]),
+        (half, f, hex): (&[SVector<f64, D>], &[Matrix3<f64>], &[Hex<D>]),
     ) {
         let nodes = reach.nodes(D);
         self.nodes = nodes;
@@ -56,16 +56,18 @@ impl<const D: usize> WeightCache<D> {
         self.grad.resize(positions.len() * nodes, SVector::zeros());
         positions
             .par_iter()
+            .enumerate()
             .zip(half.par_iter().zip(f.par_iter()))
             .zip(self.first.par_iter_mut())
             .zip(self.n.par_chunks_mut(nodes))
             .zip(self.grad.par_chunks_mut(nodes))
-            .for_each(|((((x, (half, f)), first), n), grad)| {
+            .for_each(|(((((i, x), (half, f)), first), n), grad)| {
                 let (corner, xi) = grid.locate(x);
                 let point = Point {
                     xi,
                     half,
                     f,
+                    hex: hex.get(i),
                     inv_h: &grid.inv_spacing,
                 };
                 let start = K::evaluate(&point, reach, n, grad);
@@ -135,7 +137,7 @@ mod tests {
         let x = vec![Vector3::new(0.6, 0.3, 2.2), Vector3::new(1.9, 0.01, 0.5)];
         let mut cache = WeightCache::default();
         let domains = ([Vector3::zeros(); 2], [nalgebra::Matrix3::identity(); 2]);
-        cache.compute::<Linear>(&g, Reach::CELL, &x, (&domains.0, &domains.1));
+        cache.compute::<Linear>(&g, Reach::CELL, &x, (&domains.0, &domains.1, &[]));
         let offsets = g.corner_offsets();
         for (i, x) in x.iter().enumerate() {
             let (base, xi) = g.locate(x);

@@ -59,7 +59,7 @@ pub struct Args {
 fn kernel_cost_target(kernel: ShapeFunction) -> f64 {
     match kernel {
         ShapeFunction::Linear => 1.0,
-        ShapeFunction::Cpdi => 3.0,
+        ShapeFunction::Cpdi | ShapeFunction::CpdiHex => 3.0,
         _ => 2.0,
     }
 }

@@ -28,16 +28,28 @@
 //! Steady state: the kinetic energy at the end over the stored strain energy, K/W_int, and
 //! the largest change of u_y over the last 20 % of the run relative to u_y.
 //!
+//! Meshed (`meshed_membrane`, issue 10): the trapezoid as N × N quadrilaterals, one point
+//! per element at its centroid with the element as its CPDI domain (`cpdi-hex`, the
+//! thesis's hexahedral CPDI), read through the Abaqus reader (`mpm_core::mesh`); A is the
+//! top-right element's corner. The domains follow the slanted edges exactly, where the
+//! lattice's sub-cells make a staircase. Measured: u_y = 10.237, 10.398, 10.480 mm for
+//! N = 16, 32, 64 (256 to 4096 points, 1.6 to 16 s): from below, first order (differences
+//! 0.161, 0.082 mm), extrapolating to 10.56 mm, where the lattice sequence points too.
+//! N = 8 (6 mm elements on the 2 mm grid) does not settle: K/W_int 2.6e-2 at the end.
+//!
 //! Measured (2026-11, `--profile ci`): u_y = 12.403, 11.052, 10.678, 10.583 mm for
 //! n = 2, 4, 8, 16 (1 433 to 92 101 points). u_y falls monotonically and the increments
 //! shrink by ≈ 3.7× per halving of s (second order), so the sequence tends to ≈ 10.55 mm:
 //! 1.2 % below the thesis MPM value at n = 16 and 0.2 % below the FEM value.
 
+use crate::case_result::CaseResult;
 use materials::signal::TimeSignal;
 use materials::NeoHooke;
 use mpm_core::boundary::{NodeSet, VelocityBc};
 use mpm_core::discretize::{fill, Shape};
 use mpm_core::kinematics::Kinematics;
+use mpm_core::mesh;
+use mpm_core::shape::ShapeFunction;
 use mpm_core::solver::{Settings, Solver};
 use nalgebra::{SVector, Vector2, Vector3};
 use std::sync::Arc;
@@ -93,8 +105,9 @@ const CORNER: [f64; 2] = [0.048, 0.060];
 
 #[derive(Debug, Clone)]
 pub struct CookResult {
-    /// Points per cell along each axis, n.
-    pub points_per_cell: usize,
+    /// Points per cell along each axis, n (`membrane`), or elements per side, N
+    /// (`meshed_membrane`).
+    pub level: usize,
     pub particles: usize,
     /// Vertical displacement of point A at the end [m].
     pub u_y: f64,
@@ -109,13 +122,23 @@ pub struct CookResult {
     pub wall: f64,
 }
 
-/// The membrane as a solver ready to run: `n` points per cell along each axis.
-pub fn membrane(n: usize) -> Solver<2> {
+/// The solver settings of every discretization: USL, the thesis's damping and safety.
+fn settings() -> Settings<2> {
     let mut settings = Settings::<2>::new(Kinematics::PlaneStrain, SPACING);
     settings.thesis_scheme();
     settings.damping = 5e4;
     settings.safety = 0.1;
-    let mut s = Solver::new(settings);
+    settings
+}
+
+/// Neo-Hooke, E = 500 MPa, ν = 0.35, virtual density 100 kg/m³.
+fn material() -> Arc<NeoHooke> {
+    Arc::new(NeoHooke::new(500e6, 0.35, 100.0))
+}
+
+/// The membrane as a solver ready to run: `n` points per cell along each axis.
+pub fn membrane(n: usize) -> Solver<2> {
+    let mut s = Solver::new(settings());
     let shape = Shape::Polygon {
         vertices: vec![
             Vector2::new(0.0, 0.0),
@@ -126,12 +149,7 @@ pub fn membrane(n: usize) -> Solver<2> {
     };
     let h = SPACING / n as f64;
     let points = fill(&shape, Vector2::repeat(h), Kinematics::PlaneStrain);
-    s.add_body(
-        "membrane",
-        Arc::new(NeoHooke::new(500e6, 0.35, 100.0)),
-        &points,
-        SVector::zeros(),
-    );
+    s.add_body("membrane", material(), &points, SVector::zeros());
     s.velocity_bcs
         .push(VelocityBc::fixed(NodeSet::Below { axis: 0, at: 0.0 }));
     // the column of points next to S_t
@@ -140,6 +158,69 @@ pub fn membrane(n: usize) -> Solver<2> {
         .collect();
     s.add_traction(&edge, Vector2::new(0.0, TRACTION * 0.016));
     s
+}
+
+/// The membrane's structured N × N mesh of 4-node quadrilaterals as an Abaqus input file
+/// (module `mpm_core::mesh`): column i at x = 48 i/N mm, node j of a column at the
+/// fraction j/N between the bottom edge y = 44 x/48 and the top edge y = 44 + 16 x/48 mm.
+pub fn membrane_mesh(elements: usize) -> String {
+    let n = elements;
+    let node = |i: usize, j: usize| i * (n + 1) + j + 1;
+    let mut inp = format!(
+        "** Cook's membrane, {n} x {n} CPE4 elements [m] (written by mpw: fitting::mpm_verify::cook)\n*Node\n"
+    );
+    for i in 0..=n {
+        let x = 0.048 * i as f64 / n as f64;
+        let (bottom, top) = (44.0 / 48.0 * x, 0.044 + 16.0 / 48.0 * x);
+        for j in 0..=n {
+            let y = bottom + (top - bottom) * j as f64 / n as f64;
+            inp += &format!("{}, {x:.17e}, {y:.17e}\n", node(i, j));
+        }
+    }
+    inp += "*Element, type=CPE4\n";
+    for i in 0..n {
+        for j in 0..n {
+            let corners = [
+                node(i, j),
+                node(i + 1, j),
+                node(i + 1, j + 1),
+                node(i, j + 1),
+            ];
+            inp += &format!(
+                "{}, {}, {}, {}, {}\n",
+                i * n + j + 1,
+                corners[0],
+                corners[1],
+                corners[2],
+                corners[3]
+            );
+        }
+    }
+    inp
+}
+
+/// The membrane meshed by `membrane_mesh(elements)`: one point per element with the
+/// element as its CPDI domain (`cpdi-hex`), the traction on the elements of the last
+/// column (equal shares: equal edges); returns the solver and the top-right element's
+/// point, whose domain has A as a corner.
+pub fn meshed_membrane(elements: usize) -> (Solver<2>, usize) {
+    let mut settings = settings();
+    settings.shape_function = ShapeFunction::CpdiHex;
+    let mut s = Solver::new(settings);
+    let file = std::path::PathBuf::from(format!("cook_membrane_{elements}.inp"));
+    let points = mesh::parse::<2>(&membrane_mesh(elements), &file)
+        .and_then(|m| mesh::points(&m, Kinematics::PlaneStrain))
+        .expect("the generated mesh reads");
+    let at: Vec<_> = points.iter().map(|p| (p.0, p.1)).collect();
+    let block = s.add_body("membrane", material(), &at, SVector::zeros());
+    let hex: Vec<_> = points.iter().map(|p| p.2).collect();
+    s.set_hex_domains(block, &hex);
+    s.velocity_bcs
+        .push(VelocityBc::fixed(NodeSet::Below { axis: 0, at: 0.0 }));
+    let last = elements * (elements - 1);
+    let edge: Vec<usize> = (last..last + elements).collect();
+    s.add_traction(&edge, Vector2::new(0.0, TRACTION * 0.016));
+    (s, last + elements - 1)
 }
 
 /// Index of the point whose sub-cell has A as its top-right corner.
@@ -177,11 +258,27 @@ fn load_ramp() -> TimeSignal<f64> {
 
 /// Relax the membrane with `n` points per cell for `t_end` [s].
 pub fn relax(n: usize, t_end: f64) -> Result<CookResult, mpm_core::SimulationError> {
+    let s = membrane(n);
+    let a = corner_point(&s, n);
+    relax_solver(s, a, n, t_end)
+}
+
+/// Relax the membrane meshed with N × N elements for `t_end` [s].
+pub fn relax_meshed(elements: usize, t_end: f64) -> Result<CookResult, mpm_core::SimulationError> {
+    let (s, a) = meshed_membrane(elements);
+    relax_solver(s, a, elements, t_end)
+}
+
+/// Relax `s` for `t_end` [s], measuring A through point `a`; `level` names the run.
+fn relax_solver(
+    mut s: Solver<2>,
+    a: usize,
+    level: usize,
+    t_end: f64,
+) -> Result<CookResult, mpm_core::SimulationError> {
     let clock = Instant::now();
-    let mut s = membrane(n);
     s.traction_history = Some(load_ramp());
     let ts = s.initialize();
-    let a = corner_point(&s, n);
     let mut late = Vec::new();
     while s.time < t_end - 0.5 * ts.dt {
         s.step()?;
@@ -192,7 +289,7 @@ pub fn relax(n: usize, t_end: f64) -> Result<CookResult, mpm_core::SimulationErr
     let u_y = corner_displacement(&s, a);
     let late_change = late.iter().map(|u| (u - u_y).abs()).fold(0.0, f64::max) / u_y.abs();
     Ok(CookResult {
-        points_per_cell: n,
+        level,
         particles: s.particles.len(),
         u_y,
         kinetic_ratio: s.energies.kinetic / s.energies.internal,
@@ -217,7 +314,7 @@ pub fn table(rows: &[CookResult]) -> String {
     for r in rows {
         out += &format!(
             "{:>3} {:>8} {:>10.4} {:>+10.2}% {:>+10.2}% {:>10.1e} {:>10.1e} {:>8.1}\n",
-            r.points_per_cell,
+            r.level,
             r.particles,
             r.u_y * 1e3,
             100.0 * (r.u_y / THESIS_U_Y - 1.0),
@@ -228,6 +325,65 @@ pub fn table(rows: &[CookResult]) -> String {
         );
     }
     out
+}
+
+/// Elements per side of the meshed membrane's verify rows.
+pub const MESH_LEVELS: [usize; 3] = [16, 32, 64];
+/// Order of the meshed membrane's convergence: 1 assumed (observed 0.97, differences
+/// 0.161 and 0.082 mm); its extrapolant is checked against the FEM value within the
+/// references' spread plus the move of the extrapolant to order 2.
+pub const MESH_ORDER: f64 = 1.0;
+
+/// The meshed membrane's rows (`cpdi-hex`, one point per element of `MESH_LEVELS`):
+/// u_y per level (reported), steady state per level, convergence (the second difference
+/// at most 0.75 of the first) and the extrapolant against the FEM value.
+pub fn mesh_cases(out: &mut Vec<CaseResult>) {
+    let rows: Result<Vec<_>, _> = MESH_LEVELS
+        .iter()
+        .map(|&n| relax_meshed(n, RELAXATION_TIME))
+        .collect();
+    let rows = match rows {
+        Ok(rows) => rows,
+        Err(e) => return out.push(CaseResult::holds(format!("mpm/cook-mesh: {e}"), false)),
+    };
+    eprint!(
+        "Cook's membrane on N x N quadrilaterals, cpdi-hex:\n{}",
+        table(&rows)
+    );
+    for r in &rows {
+        let name = |what: &str| format!("mpm/cook-mesh/N{}/{what}", r.level);
+        out.push(CaseResult::reported(name("u_y"), r.u_y));
+        out.push(CaseResult::at_most(
+            name("steady-K-over-W_int"),
+            r.kinetic_ratio,
+            STEADY_KINETIC,
+        ));
+        out.push(CaseResult::at_most(
+            name("steady-late-du-over-u"),
+            r.late_change,
+            STEADY_CHANGE,
+        ));
+    }
+    let u: Vec<f64> = rows.iter().map(|r| r.u_y).collect();
+    let (d1, d2) = (u[1] - u[0], u[2] - u[1]);
+    out.push(CaseResult::at_most(
+        "mpm/cook-mesh/N16-32-64/step-ratio",
+        (d2 / d1).abs(),
+        0.75,
+    ));
+    out.push(CaseResult::reported(
+        "mpm/cook-mesh/N16-32-64/observed-order",
+        (d1 / d2).abs().log2(),
+    ));
+    let (coarse, fine) = (u[1], u[2]);
+    let limit = extrapolate(coarse, fine, MESH_ORDER);
+    let order_effect = (limit - extrapolate(coarse, fine, 2.0)).abs() / FEM_U_Y;
+    out.push(CaseResult::relative(
+        "mpm/cook-mesh/N32-N64/u_y-extrapolated-vs-FEM-10.6mm",
+        limit,
+        FEM_U_Y,
+        REFERENCE_SPREAD + order_effect,
+    ));
 }
 
 #[cfg(test)]
@@ -278,5 +434,32 @@ mod tests {
         // the load: 20 MPa on the 16 mm edge
         let total: f64 = q.applied_force.iter().map(|f| f[1]).sum();
         assert!((total / 320e3 - 1.0).abs() < 1e-12, "{total}");
+    }
+
+    #[test]
+    fn the_shipped_mesh_scene_is_the_meshed_case_with_32_elements() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/scenes");
+        let inp = std::fs::read_to_string(dir.join("cook_membrane_32.inp")).unwrap();
+        assert!(
+            inp == membrane_mesh(32),
+            "cook_membrane_32.inp differs from membrane_mesh(32)"
+        );
+        let Simulation::Planar(scene) = load(&dir.join("cook_membrane_mesh.toml"))
+            .unwrap()
+            .simulation
+        else {
+            panic!("cook_membrane_mesh.toml is not a plane scene");
+        };
+        let (case, a) = meshed_membrane(32);
+        let (p, q) = (&scene.particles, &case.particles);
+        assert_eq!(p.position, q.position);
+        assert_eq!(p.volume, q.volume);
+        assert_eq!(p.hex, q.hex);
+        assert_eq!(p.half_size, q.half_size);
+        assert_eq!(p.applied_force, q.applied_force);
+        assert_eq!(scene.velocity_bcs, case.velocity_bcs);
+        assert_eq!(scene.settings.shape_function, case.settings.shape_function);
+        assert_eq!(scene.settings.safety, case.settings.safety);
+        assert_eq!(scene.nearest_particle(&Vector2::from(CORNER)), a);
     }
 }

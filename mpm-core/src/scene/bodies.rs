@@ -1,16 +1,20 @@
 //! Bodies of a scene: a primitive shape filled with material points (module
-//! `discretize`), its material and initial velocity, the particle budget checked first.
+//! `discretize`) or a mesh with one point per element (module `mesh`), its material and
+//! initial velocity, the particle budget checked first.
 
 use super::check::Check;
 use super::spec::{BodySpec, SceneFile, ShapeSpec};
 use super::SceneError;
 use crate::discretize::{fill, Shape};
 use crate::kinematics::Kinematics;
+use crate::mesh;
+use crate::shape::Hex;
 use crate::solver::Solver;
 use materials::limits::PARTICLES;
 use materials::Material;
 use nalgebra::SVector;
 use std::collections::HashMap;
+use std::path::Path;
 use std::sync::Arc;
 
 /// The shape of body `b` (field `field`) checked against the scene's dimension.
@@ -59,8 +63,22 @@ fn shape<const D: usize>(b: &BodySpec, field: &str, check: &Check) -> Result<Sha
                 .collect::<Result<_, _>>()?;
             Shape::Polygon { vertices }
         }
+        ShapeSpec::Mesh { .. } => unreachable!("mesh bodies are read by `mesh_points`"),
     };
     Ok(shape)
+}
+
+/// The points of a mesh body (module `mesh`): (position, volume, domain).
+type MeshPoints<const D: usize> = Vec<(SVector<f64, D>, f64, Hex<D>)>;
+
+fn mesh_points<const D: usize>(
+    file: &str,
+    kinematics: Kinematics,
+    check: &Check,
+) -> Result<MeshPoints<D>, SceneError> {
+    let path = check.file.parent().unwrap_or(Path::new(".")).join(file);
+    let mesh = mesh::read::<D>(&path).map_err(SceneError::Mesh)?;
+    mesh::points(&mesh, kinematics).map_err(SceneError::Mesh)
 }
 
 pub(super) fn add_bodies<const D: usize>(
@@ -83,6 +101,33 @@ pub(super) fn add_bodies<const D: usize>(
             })?
             .clone();
         let sf = format!("{field}.shape");
+        let velocity = b
+            .velocity
+            .as_ref()
+            .map(|v| check.vector::<D>(&format!("{field}.velocity"), v))
+            .transpose()?
+            .unwrap_or(SVector::zeros());
+        if let ShapeSpec::Mesh { file } = &b.shape {
+            let points = mesh_points::<D>(file, kinematics, check)?;
+            particles += points.len() as f64;
+            PARTICLES
+                .check(particles, || {
+                    format!("the mesh {file} has {} elements", points.len())
+                })
+                .map_err(|e| check.err(sf.clone(), e.to_string()))?;
+            let r_min = points.iter().map(|p| p.0[0]).fold(f64::INFINITY, f64::min);
+            if kinematics == Kinematics::Axisymmetric && r_min < 0.0 {
+                return Err(check.err(
+                    sf,
+                    format!("an element's centroid lies at r = {r_min} m < 0"),
+                ));
+            }
+            let at: Vec<_> = points.iter().map(|p| (p.0, p.1)).collect();
+            let block = solver.add_body(&b.name, material, &at, velocity);
+            let hex: Vec<_> = points.iter().map(|p| p.2).collect();
+            solver.set_hex_domains(block, &hex);
+            continue;
+        }
         let shape = shape::<D>(b, &field, check)?;
         let r_min = shape.bounds().0[0];
         if kinematics == Kinematics::Axisymmetric && r_min < 0.0 {
@@ -94,12 +139,6 @@ pub(super) fn add_bodies<const D: usize>(
         if b.particles_per_cell == 0 {
             return Err(check.err(format!("{field}.particles_per_cell"), "must be at least 1"));
         }
-        let velocity = b
-            .velocity
-            .as_ref()
-            .map(|v| check.vector::<D>(&format!("{field}.velocity"), v))
-            .transpose()?
-            .unwrap_or(SVector::zeros());
         let s = h / b.particles_per_cell as f64;
         let (lo, hi) = shape.bounds();
         let estimate: f64 = (0..D)

@@ -63,6 +63,9 @@ pub enum SceneError {
         field: String,
         problem: String,
     },
+    /// A mesh body's file (module `mesh`), with its line.
+    #[error("{0}")]
+    Mesh(crate::mesh::MeshError),
 }
 
 /// A built scene: a solver of the right dimension and the run settings.

@@ -113,6 +113,11 @@ pub enum ShapeSpec {
     Polygon {
         vertices: Vec<Vec<f64>>,
     },
+    /// A quadrilateral / hexahedral mesh file (module `mesh`), relative to the scene
+    /// file: one point per element.
+    Mesh {
+        file: String,
+    },
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]

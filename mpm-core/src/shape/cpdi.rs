@@ -13,7 +13,7 @@
 use super::domain::{Deformed, Follow, Stretched};
 use super::{corners, linear, node_index, Kernel, Point, Reach};
 use crate::grid::floor_i64;
-use nalgebra::{Matrix3, SMatrix, SVector};
+use nalgebra::SVector;
 use std::marker::PhantomData;
 
 /// The vertex form with the domain of rule `M`.
@@ -29,12 +29,9 @@ pub type CpGimp = Vertices<Stretched>;
 impl<M: Follow, const D: usize> Kernel<D> for Vertices<M> {
     const DOMAIN: bool = true;
 
-    fn extent(
-        half: &SVector<f64, D>,
-        f: &Matrix3<f64>,
-        inv_h: &SVector<f64, D>,
-    ) -> SVector<f64, D> {
-        vertex_extent(&M::edges(half, f), inv_h)
+    fn extent(p: &Point<'_, D>) -> SVector<f64, D> {
+        let r = M::edges(p.half, p.f);
+        SVector::from_fn(|i, _| r.row(i).abs().sum() * p.inv_h[i])
     }
 
     fn evaluate(
@@ -43,44 +40,62 @@ impl<M: Follow, const D: usize> Kernel<D> for Vertices<M> {
         n: &mut [f64],
         grad: &mut [SVector<f64, D>],
     ) -> [i64; D] {
-        vertex_weights(p, &M::edges(p.half, p.f), reach, n, grad)
+        let r = M::edges(p.half, p.f);
+        let r_inv = (p.half.min() > 0.0).then(|| r.try_inverse()).flatten();
+        let Some(r_inv_t) = r_inv.map(|r_inv| r_inv.transpose()) else {
+            return vertex_weights(p, &[], reach, n, grad);
+        };
+        let share = 1.0 / corners(D) as f64;
+        let vertices: [Vertex<D>; 8] = std::array::from_fn(|j| {
+            let sign =
+                SVector::<f64, D>::from_fn(|k, _| if (j >> k) & 1 == 1 { 1.0 } else { -1.0 });
+            (r * sign, share, r_inv_t * sign * share)
+        });
+        vertex_weights(p, &vertices[..corners(D)], reach, n, grad)
     }
 }
 
-/// e_i = Σ_k |R_ik| / h_i: the vertices' largest distance from the point per axis [cells].
-fn vertex_extent<const D: usize>(
-    r: &SMatrix<f64, D, D>,
+/// One vertex of a domain: its offset from the point x^j − x_p [m], its share w_j / v of
+/// the weight [-] and its gradient vector g_j / v [1/m] (eq. 10.4).
+pub(super) type Vertex<const D: usize> = (SVector<f64, D>, f64, SVector<f64, D>);
+
+/// e_i = max_j |x^j_i − x_p,i| / h_i: the vertices' largest distance from the point per
+/// axis [cells].
+pub(super) fn vertex_extent<const D: usize>(
+    offsets: &[SVector<f64, D>],
     inv_h: &SVector<f64, D>,
 ) -> SVector<f64, D> {
-    SVector::from_fn(|i, _| r.row(i).abs().sum() * inv_h[i])
+    offsets
+        .iter()
+        .fold(SVector::<f64, D>::zeros(), |e, d| e.sup(&d.abs()))
+        .component_mul(inv_h)
 }
 
-/// N^I and ∇N^I of the domain with half-edge vectors `r` [m] (module docs).
-fn vertex_weights<const D: usize>(
+/// N^I = Σ_j (w_j / v) N^I(x^j) and ∇N^I = Σ_j (g_j / v) N^I(x^j) over `vertices`
+/// (module docs); no vertices: the linear weights of the point's cell.
+pub(super) fn vertex_weights<const D: usize>(
     p: &Point<'_, D>,
-    r: &SMatrix<f64, D, D>,
+    vertices: &[Vertex<D>],
     reach: Reach,
     n: &mut [f64],
     grad: &mut [SVector<f64, D>],
 ) -> [i64; D] {
-    let r_inv = (p.half.min() > 0.0).then(|| r.try_inverse()).flatten();
-    let Some(r_inv_t) = r_inv.map(|r_inv| r_inv.transpose()) else {
+    if vertices.is_empty() {
         return point_weights(p, reach, n, grad);
-    };
-    let e = vertex_extent(r, p.inv_h);
+    }
+    let offsets: [SVector<f64, D>; 8] =
+        std::array::from_fn(|j| vertices.get(j).map_or(SVector::zeros(), |v| v.0));
+    let e = vertex_extent(&offsets, p.inv_h);
     let first: [i64; D] = std::array::from_fn(|k| floor_i64(p.xi[k] - e[k]));
     n.fill(0.0);
     grad.fill(SVector::zeros());
-    let share = 1.0 / corners(D) as f64;
-    for j in 0..corners(D) {
-        let sign = SVector::<f64, D>::from_fn(|k, _| if (j >> k) & 1 == 1 { 1.0 } else { -1.0 });
-        let vertex = p.xi + (r * sign).component_mul(p.inv_h);
+    for (offset, share, g) in vertices {
+        let vertex = p.xi + offset.component_mul(p.inv_h);
         let cell: [i64; D] = std::array::from_fn(|k| floor_i64(vertex[k]));
         let local = SVector::<f64, D>::from_fn(|k, _| vertex[k] - cell[k] as f64);
-        let g = r_inv_t * sign;
         for corner in 0..corners(D) {
             let mut node = 0;
-            let mut weight = share;
+            let mut weight = 1.0;
             for k in (0..D).rev() {
                 let upper = (corner >> k) & 1;
                 let index = cell[k] + upper as i64 - first[k];
@@ -90,7 +105,7 @@ fn vertex_weights<const D: usize>(
                 node = node * reach.support + index.clamp(0, reach.support as i64 - 1) as usize;
                 weight *= if upper == 1 { local[k] } else { 1.0 - local[k] };
             }
-            n[node] += weight;
+            n[node] += share * weight;
             grad[node] += g * weight;
         }
     }

@@ -19,7 +19,7 @@
 use super::domain::{Fixed, Follow, Stretched};
 use super::{node_index, Kernel, Point, Reach, MAX_SUPPORT};
 use crate::grid::floor_i64;
-use nalgebra::{Matrix3, SVector};
+use nalgebra::SVector;
 use std::marker::PhantomData;
 
 /// Half-widths below this [cells] are points: the hat weights (the averaged form would
@@ -39,12 +39,11 @@ pub type CpGimpAnalytic = Gimp<Stretched>;
 impl<M: Follow, const D: usize> Kernel<D> for Gimp<M> {
     const DOMAIN: bool = true;
 
-    fn extent(
-        half: &SVector<f64, D>,
-        f: &Matrix3<f64>,
-        inv_h: &SVector<f64, D>,
-    ) -> SVector<f64, D> {
-        M::edges(half, f).diagonal().abs().component_mul(inv_h)
+    fn extent(p: &Point<'_, D>) -> SVector<f64, D> {
+        M::edges(p.half, p.f)
+            .diagonal()
+            .abs()
+            .component_mul(p.inv_h)
     }
 
     #[inline]
@@ -54,7 +53,7 @@ impl<M: Follow, const D: usize> Kernel<D> for Gimp<M> {
         n: &mut [f64],
         grad: &mut [SVector<f64, D>],
     ) -> [i64; D] {
-        tensor_product(p, &Self::extent(p.half, p.f, p.inv_h), reach, n, grad)
+        tensor_product(p, &Self::extent(p), reach, n, grad)
     }
 }
 

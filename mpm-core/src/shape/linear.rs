@@ -7,7 +7,7 @@
 //! which differs from the right-hand order of figure E.3 only in labelling.
 
 use super::{corners, Kernel, Point, Reach};
-use nalgebra::{Matrix3, SVector};
+use nalgebra::SVector;
 
 /// Shape function values and gradients [1/m] at one point for the 2^D corners of its cell
 /// (arrays sized for D ≤ 3; entries beyond 2^D are unused).
@@ -49,7 +49,7 @@ pub struct Linear;
 impl<const D: usize> Kernel<D> for Linear {
     const DOMAIN: bool = false;
 
-    fn extent(_: &SVector<f64, D>, _: &Matrix3<f64>, _: &SVector<f64, D>) -> SVector<f64, D> {
+    fn extent(_: &Point<'_, D>) -> SVector<f64, D> {
         SVector::zeros()
     }
 

@@ -15,10 +15,12 @@
 mod cpdi;
 pub mod domain;
 mod gimp;
+mod hex;
 mod linear;
 
 pub use cpdi::{CpGimp, Cpdi, Vertices};
 pub use gimp::{CpGimpAnalytic, Gimp, UGimp};
+pub use hex::{CpdiHex, FoldedDomain, Hex};
 pub use linear::{linear, CellWeights, Linear};
 
 use nalgebra::{Matrix3, SVector};
@@ -45,6 +47,8 @@ pub struct Point<'a, const D: usize> {
     pub half: &'a SVector<f64, D>,
     /// Deformation gradient F (3×3 in every kinematics; the in-plane block is used).
     pub f: &'a Matrix3<f64>,
+    /// Reference hexahedral domain (`CpdiHex` only; `None` elsewhere).
+    pub hex: Option<&'a Hex<D>>,
     /// Inverse cell size 1/h_k [1/m].
     pub inv_h: &'a SVector<f64, D>,
 }
@@ -87,9 +91,8 @@ impl Reach {
 pub trait Kernel<const D: usize> {
     /// Whether the weights depend on a domain (false: the stencil is the point's cell).
     const DOMAIN: bool;
-    /// Half-extent of the point's current domain along each axis [cells].
-    fn extent(half: &SVector<f64, D>, f: &Matrix3<f64>, inv_h: &SVector<f64, D>)
-        -> SVector<f64, D>;
+    /// Half-extent of the point's current domain along each axis [cells] (`p.xi` unused).
+    fn extent(p: &Point<'_, D>) -> SVector<f64, D>;
     /// Weights N and gradients ∇N [1/m] of a stencil of `reach.support` nodes per axis
     /// (`n` and `grad` hold supportᴰ entries, x fastest); returns the first node of the
     /// stencil per axis, counted from the lower corner of the point's cell (−pad … 0).
@@ -119,20 +122,31 @@ pub enum ShapeFunction {
     CpGimpAnalytic,
     /// CPDI1: the domain deformed by the whole F (parallelogram / parallelepiped).
     Cpdi,
+    /// CPDI1 on hexahedral (quadrilateral) domains of any shape, integrated numerically
+    /// (`Particles::hex`; a point without one gets its box).
+    CpdiHex,
 }
 
 impl ShapeFunction {
     /// Every kernel, in the order of `NAMES`.
-    pub const ALL: [ShapeFunction; 5] = [
+    pub const ALL: [ShapeFunction; 6] = [
         ShapeFunction::Linear,
         ShapeFunction::UGimp,
         ShapeFunction::CpGimp,
         ShapeFunction::CpGimpAnalytic,
         ShapeFunction::Cpdi,
+        ShapeFunction::CpdiHex,
     ];
 
     /// The names of input files.
-    pub const NAMES: [&'static str; 5] = ["linear", "ugimp", "cpgimp", "cpgimp-analytic", "cpdi"];
+    pub const NAMES: [&'static str; 6] = [
+        "linear",
+        "ugimp",
+        "cpgimp",
+        "cpgimp-analytic",
+        "cpdi",
+        "cpdi-hex",
+    ];
 
     /// The input-file name.
     pub fn name(&self) -> &'static str {

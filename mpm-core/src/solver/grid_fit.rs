@@ -5,7 +5,9 @@
 
 use super::Solver;
 use crate::failure::{Cause, SimulationError};
-use crate::shape::{CpGimp, CpGimpAnalytic, Cpdi, Kernel, Linear, Reach, ShapeFunction, UGimp};
+use crate::shape::{
+    CpGimp, CpGimpAnalytic, Cpdi, CpdiHex, Kernel, Linear, Point, Reach, ShapeFunction, UGimp,
+};
 use materials::limits::GRID_NODES;
 use nalgebra::SVector;
 use rayon::prelude::*;
@@ -21,6 +23,7 @@ impl<const D: usize> Solver<D> {
             ShapeFunction::CpGimp => self.refit_grid_for::<CpGimp>(),
             ShapeFunction::CpGimpAnalytic => self.refit_grid_for::<CpGimpAnalytic>(),
             ShapeFunction::Cpdi => self.refit_grid_for::<Cpdi>(),
+            ShapeFunction::CpdiHex => self.refit_grid_for::<CpdiHex>(),
         }
     }
 
@@ -69,7 +72,7 @@ impl<const D: usize> Solver<D> {
             &self.grid,
             reach,
             &p.position,
-            (&p.half_size, &p.deformation),
+            (&p.half_size, &p.deformation, &p.hex),
         );
         Ok(())
     }
@@ -84,10 +87,14 @@ impl<const D: usize> Solver<D> {
         let (extent, widest) = (0..p.len())
             .into_par_iter()
             .map(|i| {
-                (
-                    K::extent(&p.half_size[i], &p.deformation[i], inv_h).max(),
-                    i,
-                )
+                let point = Point {
+                    xi: SVector::zeros(),
+                    half: &p.half_size[i],
+                    f: &p.deformation[i],
+                    hex: p.hex.get(i),
+                    inv_h,
+                };
+                (K::extent(&point).max(), i)
             })
             .reduce(
                 || (0.0, 0),

@@ -2,6 +2,7 @@
 //! node mass cutoff, scratch arrays, the watchdog and the initial energy.
 
 use super::{Energies, Solver};
+use crate::shape::{Hex, ShapeFunction};
 use crate::timestep::{self, TimeStep};
 use crate::watchdog::Watchdog;
 use nalgebra::SVector;
@@ -10,6 +11,9 @@ impl<const D: usize> Solver<D> {
     /// Choose Δt (eq. 7.22-7.23 and spring stability) and prepare the run.
     pub fn initialize(&mut self) -> TimeStep {
         let n = self.particles.len();
+        if self.settings.shape_function == ShapeFunction::CpdiHex {
+            self.box_domains_without_hex();
+        }
         let speed = self.max_signal_speed();
         let lightest = self
             .particles
@@ -63,5 +67,16 @@ impl<const D: usize> Solver<D> {
             ..Energies::default()
         };
         ts
+    }
+
+    /// Every point without a hexahedral domain gets its box (`cpdi-hex`).
+    fn box_domains_without_hex(&mut self) {
+        let p = &mut self.particles;
+        p.hex.resize(p.len(), Hex::none());
+        for (hex, half) in p.hex.iter_mut().zip(&p.half_size) {
+            if hex.is_none() {
+                *hex = Hex::boxed(half);
+            }
+        }
     }
 }

@@ -34,6 +34,7 @@ use crate::material_block::MaterialBlock;
 use crate::observer::Observer;
 use crate::particles::Particles;
 use crate::rigid::RigidBody;
+use crate::shape::Hex;
 use crate::shift::GridShift;
 use crate::watchdog::Watchdog;
 use crate::weights::WeightCache;
@@ -161,6 +162,26 @@ impl<const D: usize> Solver<D> {
     pub fn set_half_size(&mut self, block: usize, half: SVector<f64, D>) {
         let range = self.blocks[block].range.clone();
         self.particles.half_size[range].fill(half);
+    }
+
+    /// Give the points of block `block` the hexahedral domains `hex` (one per point, in
+    /// order), for the `cpdi-hex` kernel; their box half-widths (`set_half_size`, used by
+    /// the other kernels and by contact) become the half-extents of the vertices.
+    pub fn set_hex_domains(&mut self, block: usize, hex: &[Hex<D>]) {
+        let range = self.blocks[block].range.clone();
+        assert_eq!(
+            hex.len(),
+            range.len(),
+            "one domain per point of block {block}"
+        );
+        let p = &mut self.particles;
+        p.hex.resize(p.len(), Hex::none());
+        p.hex[range.clone()].copy_from_slice(hex);
+        for (half, h) in p.half_size[range].iter_mut().zip(hex) {
+            *half = h.offset[..crate::shape::corners(D)]
+                .iter()
+                .fold(SVector::zeros(), |e, d| e.sup(&d.abs()));
+        }
     }
 
     pub fn add_rigid_body(&mut self, body: RigidBody<D>) {
