@@ -93,6 +93,17 @@ impl CaseResult {
 }
 
 impl CaseResult {
+    /// Convergence of a value over three levels, each refining the one before by 2: the
+    /// rows `{name} step ratio` (|u2 − u1| / |u1 − u0| ≤ `max_ratio`, asserted) and
+    /// `{name} observed order` (log2 of its inverse, reported).
+    pub fn convergence(name: &str, u: [f64; 3], max_ratio: f64) -> [CaseResult; 2] {
+        let ratio = ((u[2] - u[1]) / (u[1] - u[0])).abs();
+        [
+            Self::at_most(format!("{name} step ratio"), ratio, max_ratio),
+            Self::reported(format!("{name} observed order"), -ratio.log2()),
+        ]
+    }
+
     /// A value reported without a reference or a verdict (its reference column reads NaN).
     pub fn reported(name: impl Into<String>, measured: f64) -> Self {
         Self::info(name, measured, f64::NAN)

@@ -50,7 +50,7 @@ pub struct Args {
     #[arg(long, default_value = "usl", value_parser = ["usl", "usf", "musl"])]
     pub scheme: String,
     /// Shape functions of (a) and (b), each measured: linear, ugimp, cpgimp,
-    /// cpgimp-analytic, cpdi (points' domains the lattice cells).
+    /// cpgimp-analytic, cpdi, cpdi-hex (points' domains the lattice cells).
     #[arg(long, value_delimiter = ',', default_value = "linear")]
     pub kernels: Vec<ShapeFunction>,
 }
@@ -65,15 +65,21 @@ fn kernel_cost_target(kernel: ShapeFunction) -> f64 {
 }
 
 /// Bytes per particle with `kernel` in 3D (particles, history, step scratch with the
-/// weights of the stencil at the start, 2 points per cell; grid not counted).
+/// weights of the stencil at the start, 2 points per cell, `cpdi-hex`'s reference
+/// domains; grid not counted).
 fn bytes_per_particle(kernel: ShapeFunction) -> usize {
     let reach = match kernel.needs_domains() {
         true => Reach::of(0.25),
         false => Reach::CELL,
     };
+    let hex = match kernel {
+        ShapeFunction::CpdiHex => std::mem::size_of::<mpm_core::shape::Hex<3>>(),
+        _ => 0,
+    };
     mpm_core::Particles::<3>::BYTES_PER_PARTICLE
         + std::mem::size_of::<materials::State<f64>>()
         + mpm_core::solver::scratch_bytes_per_particle(reach.nodes(3))
+        + hex
 }
 
 /// The scheme named by `--scheme`, without bulk viscosity (as the targets were set).

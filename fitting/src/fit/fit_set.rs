@@ -282,7 +282,7 @@ fn mpm_block_model(
         Some(name) => name
             .parse()
             .map_err(|e: String| anyhow!("field `shape_function`: {e}"))?,
-        None => ShapeFunction::UGimp,
+        None => ShapeFunction::Cpdi,
     };
     if !(2..=400).contains(&settings.layers) {
         bail!(

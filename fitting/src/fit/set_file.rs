@@ -27,8 +27,9 @@
 //!                             #   the MPM model with friction and inertia, `fit::mpm_shpb`)
 //! layers = 20                 # mpm-axisymmetric: points along the specimen (default 20)
 //! friction = 0.1              # mpm-axisymmetric: Coulomb μ at the faces (default 0.1)
-//! shape_function = "ugimp"    # mpm-axisymmetric: "ugimp" (default) | "linear" (drifts
-//!                             #   under refinement, `fit::mpm_shpb`)
+//! shape_function = "cpdi"     # mpm-axisymmetric: "cpdi" (default) or any other kernel
+//!                             #   (`mpm_core::shape`; "linear" drifts under refinement,
+//!                             #   "ugimp" converges slowly, `fit::mpm_shpb`)
 //! thermal = "isothermal"      # tensile: "isothermal" | "adiabatic" (default: adiabatic above 1 1/s)
 //! window = [15e-6, 115e-6]    # shpb (required): window [s] after the incident pulse start at the
 //!                             #   faces, or "plateau": the strain-rate plateau of `shpb::analyze`

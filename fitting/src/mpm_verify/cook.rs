@@ -365,15 +365,10 @@ pub fn mesh_cases(out: &mut Vec<CaseResult>) {
         ));
     }
     let u: Vec<f64> = rows.iter().map(|r| r.u_y).collect();
-    let (d1, d2) = (u[1] - u[0], u[2] - u[1]);
-    out.push(CaseResult::at_most(
-        "mpm/cook-mesh/N16-32-64/step-ratio",
-        (d2 / d1).abs(),
+    out.extend(CaseResult::convergence(
+        "mpm/cook-mesh/N16-32-64/u_y",
+        [u[0], u[1], u[2]],
         0.75,
-    ));
-    out.push(CaseResult::reported(
-        "mpm/cook-mesh/N16-32-64/observed-order",
-        (d1 / d2).abs().log2(),
     ));
     let (coarse, fine) = (u[1], u[2]);
     let limit = extrapolate(coarse, fine, MESH_ORDER);

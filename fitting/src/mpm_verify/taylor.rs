@@ -400,9 +400,9 @@ fn kernel_rows(materials: &Path, out: &mut Vec<CaseResult>) {
     match lengths {
         Ok(l) => {
             out.push(at_six(ShapeFunction::Cpdi, l[1]));
-            out.push(CaseResult::at_most(
-                format!("{name}/cpdi/final-length step ratio n3-6-12"),
-                ((l[2] - l[1]) / (l[1] - l[0])).abs(),
+            out.extend(CaseResult::convergence(
+                &format!("{name}/cpdi/n3-6-12/final-length"),
+                [l[0], l[1], l[2]],
                 0.5,
             ));
             out.push(CaseResult::relative(
