@@ -165,8 +165,11 @@ impl<const D: usize> Sources<'_, D> {
             .kinematics
             .hoop_force(&p.stress[i], vol, &p.position[i]);
         for (c, offset) in w.offsets.iter().enumerate() {
-            let node = &mut nodes[w.first + offset - start];
             let n = w.n[c];
+            if n == 0.0 && w.grad[c] == SVector::<f64, D>::zeros() {
+                continue; // a stencil node the domain does not reach (`Stencil`)
+            }
+            let node = &mut nodes[w.first + offset - start];
             if t.mass {
                 node.mass += n * m;
                 node.heaviest = node.heaviest.max(m);
