@@ -11,7 +11,8 @@
 //! friction = 0.1                  # Coulomb μ at both faces
 //! contact_factor = 1.0            # contact frequency ω_c over c/s
 //! safety = 0.3                    # CFL safety factor
-//! shape_function = "linear"       # or "ugimp" (uniform GIMP on the points' lattice domains)
+//! shape_function = "linear"       # default; any kernel of `mpm_core::shape` ("cpdi" is the
+//!                                 #   fit level's default and converges, see `fit::mpm_shpb`)
 //! ```
 
 use super::{record, Drive, ModelSettings, ShpbModel};

@@ -59,7 +59,7 @@ pub struct SolverSpec {
     pub domain: Option<BoxSpec>,
     pub blowup_factor: Option<f64>,
     pub bulk_viscosity: Option<[f64; 2]>,
-    /// "linear" (default), "ugimp", "cpgimp" or "cpdi" (module `shape`).
+    /// A kernel of `shape::ShapeFunction::NAMES` (default "linear").
     pub shape_function: Option<String>,
 }
 
