@@ -193,53 +193,48 @@ impl<const D: usize> Reader<D> {
         Ok(())
     }
 
+    /// The error of a data line that does not have the `form` it should.
+    fn malformed(&self, line: usize, form: &str, fields: &[&str]) -> MeshError {
+        self.err(line, format!("{form}, got `{}`", fields.join(", ")))
+    }
+
     fn node(&mut self, fields: &[&str], line: usize) -> Result<(), MeshError> {
-        let numbers: Vec<f64> = fields
+        let form = "a *Node line is `id, x, y[, z]` (integer id)";
+        let bad = || self.malformed(line, form, fields);
+        let id: u64 = fields
+            .first()
+            .and_then(|f| f.parse().ok())
+            .ok_or_else(bad)?;
+        let x: Vec<f64> = fields[1..]
             .iter()
-            .map(|f| f.parse::<f64>())
-            .collect::<Result<_, _>>()
-            .map_err(|_| {
-                self.err(
-                    line,
-                    format!(
-                        "a *Node line is `id, x, y[, z]`, got `{}`",
-                        fields.join(", ")
-                    ),
-                )
-            })?;
-        let extra_zero = numbers.len() == D + 2 && numbers[D + 1] == 0.0 && D == 2;
-        if numbers.len() != D + 1 && !extra_zero {
+            .map(|f| f.parse().ok())
+            .collect::<Option<_>>()
+            .ok_or_else(bad)?;
+        let extra_zero = D == 2 && x.len() == 3 && x[2] == 0.0;
+        if x.len() != D && !extra_zero {
             return Err(self.err(
                 line,
                 format!(
                     "a *Node line of a {D}-D mesh has {} numbers (id and {D} coordinates), got {}",
                     D + 1,
-                    numbers.len()
+                    fields.len()
                 ),
             ));
         }
-        let id = numbers[0] as u64;
-        let x = SVector::<f64, D>::from_fn(|k, _| numbers[k + 1]);
-        if self.mesh.nodes.insert(id, x).is_some() {
+        let position = SVector::<f64, D>::from_fn(|k, _| x[k]);
+        if self.mesh.nodes.insert(id, position).is_some() {
             return Err(self.err(line, format!("node {id} defined twice")));
         }
         Ok(())
     }
 
     fn element(&mut self, fields: &[&str], line: usize) -> Result<(), MeshError> {
+        let form = "an *Element line is `id, node, …` (integers)";
         let ids: Vec<u64> = fields
             .iter()
-            .map(|f| f.parse::<u64>())
-            .collect::<Result<_, _>>()
-            .map_err(|_| {
-                self.err(
-                    line,
-                    format!(
-                        "an *Element line is `id, node, …`, got `{}`",
-                        fields.join(", ")
-                    ),
-                )
-            })?;
+            .map(|f| f.parse().ok())
+            .collect::<Option<_>>()
+            .ok_or_else(|| self.malformed(line, form, fields))?;
         if ids.len() != corners(D) + 1 {
             return Err(self.err(
                 line,
@@ -359,6 +354,7 @@ mod tests {
             ("*Node\n1, 0, 0, 0.5\n", 2, "has 3 numbers"),
             ("*Node\n1, 0, 0\n1, 1, 0\n", 3, "node 1 defined twice"),
             ("*Node\n1, 0, x\n", 2, "`id, x, y[, z]`"),
+            ("*Node\n1.5, 0, 0\n", 2, "(integer id), got `1.5, 0, 0`"),
             ("*Element, type=CPE4\n1, 1, 2, 3\n", 2, "has 4 nodes, got 3"),
             (
                 "*Instance, name=a, part=p\n 1.0, 0.0, 0.0\n",
