@@ -15,7 +15,7 @@
 //! Vertex j sits at ξ^j with ξ_k = +1 where bit k of j is set (x fastest; a mesh reader
 //! reorders its elements' counter-clockwise corners to this).
 
-use super::cpdi::{vertex_extent, vertex_weights};
+use super::cpdi::{vertex_extent, vertex_weights, Vertex};
 use super::{corners, Kernel, Point, Reach};
 use nalgebra::{Matrix3, SMatrix, SVector};
 
@@ -178,14 +178,13 @@ impl<const D: usize> Kernel<D> for CpdiHex {
         n: &mut [f64],
         grad: &mut [SVector<f64, D>],
     ) -> [i64; D] {
-        let hex = p.hex.filter(|h| !h.is_none());
-        let f_inv_t = hex.and_then(|_| in_plane::<D>(p.f).try_inverse());
-        let (Some(hex), Some(f_inv_t)) = (hex, f_inv_t.map(|m| m.transpose())) else {
+        let f = in_plane::<D>(p.f);
+        let (Some(hex), Some(f_inv)) = (p.hex.filter(|h| !h.is_none()), f.try_inverse()) else {
             return vertex_weights(p, &[], reach, n, grad);
         };
-        let offsets = current_offsets(hex, p.f);
-        let vertices: [(SVector<f64, D>, f64, SVector<f64, D>); 8] =
-            std::array::from_fn(|j| (offsets[j], hex.weight[j], f_inv_t * hex.grad[j]));
+        let f_inv_t = f_inv.transpose();
+        let vertices: [Vertex<D>; 8] =
+            std::array::from_fn(|j| (f * hex.offset[j], hex.weight[j], f_inv_t * hex.grad[j]));
         vertex_weights(p, &vertices[..corners(D)], reach, n, grad)
     }
 }

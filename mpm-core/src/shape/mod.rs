@@ -9,8 +9,10 @@
 //!
 //! The domain of a point is the box of reference half-widths a_k (`Particles::half_size`)
 //! carried along by its deformation gradient F: not at all (uGIMP), by the diagonal of F
-//! (cpGIMP) or by the whole F (CPDI1, domain vectors r_k = F a_k e_k, eq. 10.4). A point
-//! without a domain (a_k = 0) gets the linear weights from every kernel.
+//! (cpGIMP) or by the whole F (CPDI1, domain vectors r_k = F a_k e_k, eq. 10.4); or, for
+//! `CpdiHex`, any quadrilateral or hexahedron (`Particles::hex`, e.g. a mesh element)
+//! carried by F. A point without a domain (a_k = 0) gets the linear weights from every
+//! kernel.
 
 mod cpdi;
 pub mod domain;
