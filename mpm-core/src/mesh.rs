@@ -151,8 +151,12 @@ impl<const D: usize> Reader<D> {
     }
 
     fn keyword(&mut self, keyword: &str, line: usize) -> Result<(), MeshError> {
-        let mut parts = keyword.split(',').map(str::trim);
-        let name = parts.next().unwrap_or("").to_ascii_lowercase();
+        let name = keyword
+            .split(',')
+            .next()
+            .unwrap_or("")
+            .trim()
+            .to_ascii_lowercase();
         let option = |key: &str| {
             keyword.split(',').skip(1).find_map(|p| {
                 let (k, v) = p.split_once('=')?;
