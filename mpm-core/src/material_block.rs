@@ -3,6 +3,7 @@
 //! a particle struct so that elastic and plastic bodies each store only what they use
 //! (the history of every point of a block has the same layout).
 
+use crate::shape::ShapeFunction;
 use materials::{Material, State};
 use std::ops::Range;
 use std::sync::Arc;
@@ -15,6 +16,8 @@ pub struct MaterialBlock {
     pub range: Range<usize>,
     /// History of each particle of `range`, in the same order.
     pub state: Vec<State<f64>>,
+    /// This body's shape functions; `None`: the scene's (`Settings::shape_function`).
+    pub shape_function: Option<ShapeFunction>,
 }
 
 impl MaterialBlock {

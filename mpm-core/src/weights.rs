@@ -9,12 +9,14 @@ use crate::grid::Grid;
 use crate::shape::{Hex, Kernel, Point, Reach};
 use nalgebra::{Matrix3, SVector};
 use rayon::prelude::*;
+use std::ops::Range;
 
 /// Weights of every particle's stencil for the current grid.
 #[derive(Debug, Clone, Default)]
 pub struct WeightCache<const D: usize> {
-    /// Nodes per axis the kernel reaches.
+    /// Nodes per axis the kernel reaches, and how many below a point's cell.
     support: usize,
+    pad: usize,
     /// Stencil nodes per particle.
     nodes: usize,
     /// Node-number offsets of the stencil nodes from the first one (x fastest).
@@ -26,6 +28,13 @@ pub struct WeightCache<const D: usize> {
     /// ∇N_I [1/m], `nodes` per particle.
     grad: Vec<SVector<f64, D>>,
 }
+
+/// What `WeightCache::fill` reads per point: positions [m], and the domains: half-widths
+/// [m], deformation gradients, hexahedral domains (may be empty).
+pub type Domains<'a, const D: usize> = (
+    &'a [SVector<f64, D>],
+    (&'a [SVector<f64, D>], &'a [Matrix3<f64>], &'a [Hex<D>]),
+);
 
 /// One particle's stencil: node numbers are `first + offsets[k]`. A domain kernel's
 /// stencil is as wide as the step's widest domain, and most points reach only some of its
@@ -40,37 +49,50 @@ pub struct Stencil<'a, const D: usize> {
 }
 
 impl<const D: usize> WeightCache<D> {
-    /// Evaluate kernel `K` with stencils of `reach` at every position on `grid` (fitted to
-    /// hold the stencils), for points with reference domain half-widths `half` [m],
-    /// deformation gradients `f` and hexahedral domains `hex` (empty unless `CpdiHex`).
-    pub fn compute<K: Kernel<D>>(
-        &mut self,
-        grid: &Grid<D>,
-        reach: Reach,
-        positions: &[SVector<f64, D>],
-        (half, f, hex): (&[SVector<f64, D>], &[Matrix3<f64>], &[Hex<D>]),
-    ) {
+    /// Size the cache for `count` points on stencils of `reach` on `grid` (fitted to hold
+    /// them); `fill` then evaluates each body's points with its kernel.
+    pub fn prepare(&mut self, grid: &Grid<D>, reach: Reach, count: usize) {
         let nodes = reach.nodes(D);
         self.nodes = nodes;
         self.support = reach.support;
+        self.pad = reach.pad;
         stencil_offsets(grid, reach.support, &mut self.offsets);
+        self.first.resize(count, 0);
+        self.n.resize(count * nodes, 0.0);
+        self.grad.resize(count * nodes, SVector::zeros());
+    }
+
+    /// Evaluate kernel `K` at the points `range` of `positions`, with reference domain
+    /// half-widths `half` [m], deformation gradients `f` and hexahedral domains `hex`
+    /// (empty unless some body runs `CpdiHex`), all indexed like `positions`.
+    pub fn fill<K: Kernel<D>>(
+        &mut self,
+        grid: &Grid<D>,
+        range: Range<usize>,
+        (positions, (half, f, hex)): Domains<'_, D>,
+    ) {
+        let (nodes, reach) = (
+            self.nodes,
+            Reach {
+                support: self.support,
+                pad: self.pad,
+            },
+        );
         let pad: usize = grid.strides.iter().map(|s| s * reach.pad).sum();
-        self.first.resize(positions.len(), 0);
-        self.n.resize(positions.len() * nodes, 0.0);
-        self.grad.resize(positions.len() * nodes, SVector::zeros());
-        positions
+        let (start, end) = (range.start, range.end);
+        positions[range.clone()]
             .par_iter()
             .enumerate()
-            .zip(half.par_iter().zip(f.par_iter()))
-            .zip(self.first.par_iter_mut())
-            .zip(self.n.par_chunks_mut(nodes))
-            .zip(self.grad.par_chunks_mut(nodes))
-            .for_each(|(((((i, x), (half, f)), first), n), grad)| {
+            .zip(self.first[range].par_iter_mut())
+            .zip(self.n[start * nodes..end * nodes].par_chunks_mut(nodes))
+            .zip(self.grad[start * nodes..end * nodes].par_chunks_mut(nodes))
+            .for_each(|((((k, x), first), n), grad)| {
+                let i = start + k;
                 let (corner, xi) = grid.locate(x);
                 let point = Point {
                     xi,
-                    half,
-                    f,
+                    half: &half[i],
+                    f: &f[i],
                     hex: hex.get(i),
                     inv_h: &grid.inv_spacing,
                 };
@@ -141,7 +163,8 @@ mod tests {
         let x = vec![Vector3::new(0.6, 0.3, 2.2), Vector3::new(1.9, 0.01, 0.5)];
         let mut cache = WeightCache::default();
         let domains = ([Vector3::zeros(); 2], [nalgebra::Matrix3::identity(); 2]);
-        cache.compute::<Linear>(&g, Reach::CELL, &x, (&domains.0, &domains.1, &[]));
+        cache.prepare(&g, Reach::CELL, x.len());
+        cache.fill::<Linear>(&g, 0..x.len(), (&x, (&domains.0, &domains.1, &[])));
         let offsets = g.corner_offsets();
         for (i, x) in x.iter().enumerate() {
             let (base, xi) = g.locate(x);

@@ -8,7 +8,7 @@ use super::SceneError;
 use crate::discretize::{fill, Shape};
 use crate::kinematics::Kinematics;
 use crate::mesh;
-use crate::shape::Hex;
+use crate::shape::{Hex, ShapeFunction};
 use crate::solver::Solver;
 use materials::limits::PARTICLES;
 use materials::Material;
@@ -107,6 +107,13 @@ pub(super) fn add_bodies<const D: usize>(
             .map(|v| check.vector::<D>(&format!("{field}.velocity"), v))
             .transpose()?
             .unwrap_or(SVector::zeros());
+        let kernel = match &b.shape_function {
+            Some(name) => Some(
+                name.parse::<ShapeFunction>()
+                    .map_err(|e| check.err(format!("{field}.shape_function"), e))?,
+            ),
+            None => None,
+        };
         if let ShapeSpec::Mesh { file } = &b.shape {
             let points = mesh_points::<D>(file, kinematics, check)?;
             particles += points.len() as f64;
@@ -124,6 +131,7 @@ pub(super) fn add_bodies<const D: usize>(
             }
             let at: Vec<_> = points.iter().map(|p| (p.0, p.1)).collect();
             let block = solver.add_body(&b.name, material, &at, velocity);
+            solver.blocks[block].shape_function = kernel;
             let hex: Vec<_> = points.iter().map(|p| p.2).collect();
             solver.set_hex_domains(block, &hex);
             continue;
@@ -155,7 +163,8 @@ pub(super) fn add_bodies<const D: usize>(
             return Err(check.err(sf, "holds no material point (smaller than a sub-cell?)"));
         }
         let block = solver.add_body(&b.name, material, &points, velocity);
-        if solver.settings.shape_function.needs_domains() {
+        solver.blocks[block].shape_function = kernel;
+        if solver.kernel_of(block).needs_domains() {
             solver.set_half_size(block, s * 0.5);
         }
     }

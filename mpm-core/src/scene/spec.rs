@@ -129,6 +129,8 @@ pub struct BodySpec {
     #[serde(default = "two")]
     pub particles_per_cell: usize,
     pub velocity: Option<Vec<f64>>,
+    /// This body's kernel (`shape::ShapeFunction::NAMES`); default the scene's.
+    pub shape_function: Option<String>,
 }
 
 fn two() -> usize {

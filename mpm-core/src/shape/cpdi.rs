@@ -11,7 +11,7 @@
 //! reproduce linear fields. A point without a domain gets the linear weights.
 
 use super::domain::{Deformed, Follow, Stretched};
-use super::{corners, linear, node_index, Kernel, Point, Reach};
+use super::{corners, Kernel, Linear, Point, Reach};
 use crate::grid::floor_i64;
 use nalgebra::SVector;
 use std::marker::PhantomData;
@@ -81,7 +81,7 @@ pub(super) fn vertex_weights<const D: usize>(
     grad: &mut [SVector<f64, D>],
 ) -> [i64; D] {
     if vertices.is_empty() {
-        return point_weights(p, reach, n, grad);
+        return Linear::evaluate(p, reach, n, grad);
     }
     let offsets: [SVector<f64, D>; 8] =
         std::array::from_fn(|j| vertices.get(j).map_or(SVector::zeros(), |v| v.0));
@@ -110,24 +110,4 @@ pub(super) fn vertex_weights<const D: usize>(
         }
     }
     first
-}
-
-/// The linear weights of the point's cell, placed in a stencil of `reach`.
-fn point_weights<const D: usize>(
-    p: &Point<'_, D>,
-    reach: Reach,
-    n: &mut [f64],
-    grad: &mut [SVector<f64, D>],
-) -> [i64; D] {
-    let w = linear(&p.xi, p.inv_h);
-    n.fill(0.0);
-    grad.fill(SVector::zeros());
-    for (node, (n, g)) in n.iter_mut().zip(grad.iter_mut()).enumerate() {
-        let index: [usize; D] = node_index(node, reach.support);
-        if index.iter().all(|&i| i < 2) {
-            let corner: usize = (0..D).map(|k| index[k] << k).sum();
-            (*n, *g) = (w.n[corner], w.grad[corner]);
-        }
-    }
-    [0; D]
 }

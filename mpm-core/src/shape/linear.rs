@@ -6,7 +6,7 @@
 //! ∂N_k/∂x_j = da_{bit_j(k)} Π_{i≠j} a_{bit_i(k)}. The corner order is binary (x fastest),
 //! which differs from the right-hand order of figure E.3 only in labelling.
 
-use super::{corners, Kernel, Point, Reach};
+use super::{corners, node_index, Kernel, Point, Reach};
 use nalgebra::SVector;
 
 /// Shape function values and gradients [1/m] at one point for the 2^D corners of its cell
@@ -60,10 +60,23 @@ impl<const D: usize> Kernel<D> for Linear {
         n: &mut [f64],
         grad: &mut [SVector<f64, D>],
     ) -> [i64; D] {
-        debug_assert_eq!(reach, Reach::CELL);
         let w = linear(&p.xi, p.inv_h);
-        n.copy_from_slice(&w.n[..corners(D)]);
-        grad.copy_from_slice(&w.grad[..corners(D)]);
+        if reach == Reach::CELL {
+            n.copy_from_slice(&w.n[..corners(D)]);
+            grad.copy_from_slice(&w.grad[..corners(D)]);
+            return [0; D];
+        }
+        // a wider stencil (another body's domains, or a point without one): the cell's
+        // corners are its first two nodes per axis
+        n.fill(0.0);
+        grad.fill(SVector::zeros());
+        for (node, (n, g)) in n.iter_mut().zip(grad.iter_mut()).enumerate() {
+            let index: [usize; D] = node_index(node, reach.support);
+            if index.iter().all(|&i| i < 2) {
+                let corner: usize = (0..D).map(|k| index[k] << k).sum();
+                (*n, *g) = (w.n[corner], w.grad[corner]);
+            }
+        }
         [0; D]
     }
 }

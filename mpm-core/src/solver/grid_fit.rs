@@ -8,6 +8,7 @@ use crate::failure::{Cause, SimulationError};
 use crate::shape::{
     CpGimp, CpGimpAnalytic, Cpdi, CpdiHex, Kernel, Linear, Point, Reach, ShapeFunction, UGimp,
 };
+use crate::weights::Domains;
 use materials::limits::GRID_NODES;
 use nalgebra::SVector;
 use rayon::prelude::*;
@@ -15,21 +16,53 @@ use rayon::prelude::*;
 impl<const D: usize> Solver<D> {
     /// Fit the grid to the particles' bounding box (shifted origin if grid shift is on),
     /// unless that box would need more than `limits::GRID_NODES` nodes, and evaluate
-    /// every point's shape functions for the step.
+    /// every point's shape functions for the step, each body with its own kernel on the
+    /// stencil of the widest domain of any body.
     pub(super) fn refit_grid(&mut self) -> Result<(), SimulationError> {
-        match self.settings.shape_function {
-            ShapeFunction::Linear => self.refit_grid_for::<Linear>(),
-            ShapeFunction::UGimp => self.refit_grid_for::<UGimp>(),
-            ShapeFunction::CpGimp => self.refit_grid_for::<CpGimp>(),
-            ShapeFunction::CpGimpAnalytic => self.refit_grid_for::<CpGimpAnalytic>(),
-            ShapeFunction::Cpdi => self.refit_grid_for::<Cpdi>(),
-            ShapeFunction::CpdiHex => self.refit_grid_for::<CpdiHex>(),
+        let mut widest = (Reach::CELL, 0.0, 0);
+        for b in 0..self.blocks.len() {
+            let (reach, extent, point) = match self.kernel_of(b) {
+                ShapeFunction::Linear => self.reach::<Linear>(b),
+                ShapeFunction::UGimp => self.reach::<UGimp>(b),
+                ShapeFunction::CpGimp => self.reach::<CpGimp>(b),
+                ShapeFunction::CpGimpAnalytic => self.reach::<CpGimpAnalytic>(b),
+                ShapeFunction::Cpdi => self.reach::<Cpdi>(b),
+                ShapeFunction::CpdiHex => self.reach::<CpdiHex>(b),
+            };
+            if extent > widest.1 || extent.is_nan() {
+                widest = (reach, extent, point);
+            }
         }
+        let (reach, extent, point) = widest;
+        if !reach.fits(D) || !extent.is_finite() {
+            let limit = (1..)
+                .map(|e| e as f64 * 0.5)
+                .take_while(|&e| Reach::of(e).fits(D))
+                .last()
+                .unwrap_or(0.0);
+            return Err(self.failure(Some(point), Cause::DomainTooLarge { extent, limit }));
+        }
+        self.fit_grid(reach)?;
+        let (s, p) = (&mut self.scratch, &self.particles);
+        s.weights.prepare(&self.grid, reach, p.len());
+        let (w, grid) = (&mut s.weights, &self.grid);
+        for block in &self.blocks {
+            let range = block.range.clone();
+            let at: Domains<'_, D> = (&p.position, (&p.half_size, &p.deformation, &p.hex));
+            match block.shape_function.unwrap_or(self.settings.shape_function) {
+                ShapeFunction::Linear => w.fill::<Linear>(grid, range, at),
+                ShapeFunction::UGimp => w.fill::<UGimp>(grid, range, at),
+                ShapeFunction::CpGimp => w.fill::<CpGimp>(grid, range, at),
+                ShapeFunction::CpGimpAnalytic => w.fill::<CpGimpAnalytic>(grid, range, at),
+                ShapeFunction::Cpdi => w.fill::<Cpdi>(grid, range, at),
+                ShapeFunction::CpdiHex => w.fill::<CpdiHex>(grid, range, at),
+            }
+        }
+        Ok(())
     }
 
-    /// `refit_grid` for kernel `K`: the grid holds every stencil over every shift.
-    fn refit_grid_for<K: Kernel<D>>(&mut self) -> Result<(), SimulationError> {
-        let reach = self.reach::<K>()?;
+    /// Fit the grid to hold every stencil of `reach` over every shift.
+    fn fit_grid(&mut self, reach: Reach) -> Result<(), SimulationError> {
         let shift = self.shift.as_mut().map_or(SVector::zeros(), |s| s.sample());
         self.grid.origin = self.settings.origin + shift;
         let x = &self.particles.position;
@@ -67,24 +100,18 @@ impl<const D: usize> Solver<D> {
             return Err(self.failure(None, Cause::GridTooLarge(e)));
         }
         self.grid.fit(cmin, cmax, pad, support);
-        let (s, p) = (&mut self.scratch, &self.particles);
-        s.weights.compute::<K>(
-            &self.grid,
-            reach,
-            &p.position,
-            (&p.half_size, &p.deformation, &p.hex),
-        );
         Ok(())
     }
 
-    /// The stencil size this step: from the largest domain half-extent over the points,
-    /// which may not exceed what `MAX_STENCIL_NODES` holds (a failure naming the point).
-    fn reach<K: Kernel<D>>(&self) -> Result<Reach, SimulationError> {
-        if !K::DOMAIN {
-            return Ok(Reach::CELL);
+    /// The stencil block `block` needs with kernel `K` this step: from the largest domain
+    /// half-extent [cells] over its points; returns it with that extent and its point.
+    fn reach<K: Kernel<D>>(&self, block: usize) -> (Reach, f64, usize) {
+        let range = self.blocks[block].range.clone();
+        if !K::DOMAIN || range.is_empty() {
+            return (Reach::CELL, 0.0, range.start);
         }
         let (p, inv_h) = (&self.particles, &self.grid.inv_spacing);
-        let (extent, widest) = (0..p.len())
+        let (extent, widest) = range
             .into_par_iter()
             .map(|i| {
                 let point = Point {
@@ -97,7 +124,7 @@ impl<const D: usize> Solver<D> {
                 (K::extent(&point).max(), i)
             })
             .reduce(
-                || (0.0, 0),
+                || (0.0, self.blocks[block].range.start),
                 |a, b| {
                     if b.0 > a.0 || (b.0 == a.0 && b.1 < a.1) {
                         b
@@ -106,15 +133,6 @@ impl<const D: usize> Solver<D> {
                     }
                 },
             );
-        let reach = Reach::of(extent);
-        if !reach.fits(D) || !extent.is_finite() {
-            let limit = (1..)
-                .map(|e| e as f64 * 0.5)
-                .take_while(|&e| Reach::of(e).fits(D))
-                .last()
-                .unwrap_or(0.0);
-            return Err(self.failure(Some(widest), Cause::DomainTooLarge { extent, limit }));
-        }
-        Ok(reach)
+        (Reach::of(extent), extent, widest)
     }
 }

@@ -11,7 +11,7 @@ impl<const D: usize> Solver<D> {
     /// Choose Δt (eq. 7.22-7.23 and spring stability) and prepare the run.
     pub fn initialize(&mut self) -> TimeStep {
         let n = self.particles.len();
-        if self.settings.shape_function == ShapeFunction::CpdiHex {
+        if (0..self.blocks.len()).any(|b| self.kernel_of(b) == ShapeFunction::CpdiHex) {
             self.box_domains_without_hex();
         }
         let speed = self.max_signal_speed();

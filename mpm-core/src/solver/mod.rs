@@ -34,7 +34,7 @@ use crate::material_block::MaterialBlock;
 use crate::observer::Observer;
 use crate::particles::Particles;
 use crate::rigid::RigidBody;
-use crate::shape::Hex;
+use crate::shape::{Hex, ShapeFunction};
 use crate::shift::GridShift;
 use crate::watchdog::Watchdog;
 use crate::weights::WeightCache;
@@ -153,8 +153,16 @@ impl<const D: usize> Solver<D> {
             material,
             range: start..self.particles.len(),
             state,
+            shape_function: None,
         });
         block
+    }
+
+    /// The shape functions of block `block`: its own, or the scene's.
+    pub fn kernel_of(&self, block: usize) -> ShapeFunction {
+        self.blocks[block]
+            .shape_function
+            .unwrap_or(self.settings.shape_function)
     }
 
     /// Give every point of block `block` the reference domain half-widths `half` [m]
