@@ -21,6 +21,11 @@ pub struct MaterialBlock {
 }
 
 impl MaterialBlock {
+    /// This body's shape functions, given the scene's.
+    pub fn kernel(&self, scene: ShapeFunction) -> ShapeFunction {
+        self.shape_function.unwrap_or(scene)
+    }
+
     /// Dilatational wave speed c = √((Λ+2G)/ρ0) (eq. 7.23) [m/s].
     pub fn wave_speed(&self) -> f64 {
         (self.material.p_wave_modulus() / self.material.density()).sqrt()

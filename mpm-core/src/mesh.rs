@@ -259,11 +259,15 @@ impl<const D: usize> Reader<D> {
     }
 }
 
-/// One material point per element of `mesh`: (position [m], volume [m³ or m³ per m], domain).
+/// The material point of one element: position [m], volume [m³, or m³ per m in plane
+/// strain] and domain.
+pub type MeshPoint<const D: usize> = (SVector<f64, D>, f64, Hex<D>);
+
+/// One material point per element of `mesh`.
 pub fn points<const D: usize>(
     mesh: &Mesh<D>,
     kinematics: Kinematics,
-) -> Result<Vec<(SVector<f64, D>, f64, Hex<D>)>, MeshError> {
+) -> Result<Vec<MeshPoint<D>>, MeshError> {
     mesh.elements
         .iter()
         .map(|(line, ids)| {
@@ -271,7 +275,7 @@ pub fn points<const D: usize>(
             let (centre, hex) = Hex::new(&vertices).map_err(|e| MeshError {
                 file: mesh.file.clone(),
                 line: *line,
-                message: format!("element {e}"),
+                message: format!("element: {e}"),
             })?;
             let volume = match kinematics {
                 Kinematics::Axisymmetric => 2.0 * std::f64::consts::PI * centre[0] * hex.volume,

@@ -14,9 +14,8 @@ use std::ops::Range;
 /// Weights of every particle's stencil for the current grid.
 #[derive(Debug, Clone, Default)]
 pub struct WeightCache<const D: usize> {
-    /// Nodes per axis the kernel reaches, and how many below a point's cell.
-    support: usize,
-    pad: usize,
+    /// The stencil of every point this step.
+    reach: Reach,
     /// Stencil nodes per particle.
     nodes: usize,
     /// Node-number offsets of the stencil nodes from the first one (x fastest).
@@ -54,8 +53,7 @@ impl<const D: usize> WeightCache<D> {
     pub fn prepare(&mut self, grid: &Grid<D>, reach: Reach, count: usize) {
         let nodes = reach.nodes(D);
         self.nodes = nodes;
-        self.support = reach.support;
-        self.pad = reach.pad;
+        self.reach = reach;
         stencil_offsets(grid, reach.support, &mut self.offsets);
         self.first.resize(count, 0);
         self.n.resize(count * nodes, 0.0);
@@ -71,13 +69,7 @@ impl<const D: usize> WeightCache<D> {
         range: Range<usize>,
         (positions, (half, f, hex)): Domains<'_, D>,
     ) {
-        let (nodes, reach) = (
-            self.nodes,
-            Reach {
-                support: self.support,
-                pad: self.pad,
-            },
-        );
+        let (nodes, reach) = (self.nodes, self.reach);
         let pad: usize = grid.strides.iter().map(|s| s * reach.pad).sum();
         let (start, end) = (range.start, range.end);
         positions[range.clone()]
@@ -118,7 +110,7 @@ impl<const D: usize> WeightCache<D> {
 
     /// Nodes per axis the kernel of the last `compute` reaches.
     pub fn support(&self) -> usize {
-        self.support
+        self.reach.support
     }
 
     /// Node number of particle `i`'s first stencil node.

@@ -211,10 +211,7 @@ pub fn meshed_membrane(elements: usize) -> (Solver<2>, usize) {
     let points = mesh::parse::<2>(&membrane_mesh(elements), &file)
         .and_then(|m| mesh::points(&m, Kinematics::PlaneStrain))
         .expect("the generated mesh reads");
-    let at: Vec<_> = points.iter().map(|p| (p.0, p.1)).collect();
-    let block = s.add_body("membrane", material(), &at, SVector::zeros());
-    let hex: Vec<_> = points.iter().map(|p| p.2).collect();
-    s.set_hex_domains(block, &hex);
+    s.add_mesh_body("membrane", material(), &points, SVector::zeros());
     s.velocity_bcs
         .push(VelocityBc::fixed(NodeSet::Below { axis: 0, at: 0.0 }));
     let last = elements * (elements - 1);

@@ -7,8 +7,8 @@ use super::spec::{BodySpec, SceneFile, ShapeSpec};
 use super::SceneError;
 use crate::discretize::{fill, Shape};
 use crate::kinematics::Kinematics;
-use crate::mesh;
-use crate::shape::{Hex, ShapeFunction};
+use crate::mesh::{self, MeshPoint};
+use crate::shape::ShapeFunction;
 use crate::solver::Solver;
 use materials::limits::PARTICLES;
 use materials::Material;
@@ -68,14 +68,12 @@ fn shape<const D: usize>(b: &BodySpec, field: &str, check: &Check) -> Result<Sha
     Ok(shape)
 }
 
-/// The points of a mesh body (module `mesh`): (position, volume, domain).
-type MeshPoints<const D: usize> = Vec<(SVector<f64, D>, f64, Hex<D>)>;
-
+/// The points of a mesh body (module `mesh`), its file relative to the scene's.
 fn mesh_points<const D: usize>(
     file: &str,
     kinematics: Kinematics,
     check: &Check,
-) -> Result<MeshPoints<D>, SceneError> {
+) -> Result<Vec<MeshPoint<D>>, SceneError> {
     let path = check.file.parent().unwrap_or(Path::new(".")).join(file);
     let mesh = mesh::read::<D>(&path).map_err(SceneError::Mesh)?;
     mesh::points(&mesh, kinematics).map_err(SceneError::Mesh)
@@ -107,13 +105,10 @@ pub(super) fn add_bodies<const D: usize>(
             .map(|v| check.vector::<D>(&format!("{field}.velocity"), v))
             .transpose()?
             .unwrap_or(SVector::zeros());
-        let kernel = match &b.shape_function {
-            Some(name) => Some(
-                name.parse::<ShapeFunction>()
-                    .map_err(|e| check.err(format!("{field}.shape_function"), e))?,
-            ),
-            None => None,
-        };
+        let kernel = (b.shape_function.as_deref())
+            .map(str::parse::<ShapeFunction>)
+            .transpose()
+            .map_err(|e| check.err(format!("{field}.shape_function"), e))?;
         if let ShapeSpec::Mesh { file } = &b.shape {
             let points = mesh_points::<D>(file, kinematics, check)?;
             particles += points.len() as f64;
@@ -122,18 +117,19 @@ pub(super) fn add_bodies<const D: usize>(
                     format!("the mesh {file} has {} elements", points.len())
                 })
                 .map_err(|e| check.err(sf.clone(), e.to_string()))?;
-            let r_min = points.iter().map(|p| p.0[0]).fold(f64::INFINITY, f64::min);
+            let r_min = (points.iter())
+                .map(|p| p.0[0] - p.2.half_extent()[0])
+                .fold(f64::INFINITY, f64::min);
             if kinematics == Kinematics::Axisymmetric && r_min < 0.0 {
                 return Err(check.err(
                     sf,
-                    format!("an element's centroid lies at r = {r_min} m < 0"),
+                    format!(
+                        "an element reaches r = {r_min} m < 0: an axisymmetric body lies in r ≥ 0"
+                    ),
                 ));
             }
-            let at: Vec<_> = points.iter().map(|p| (p.0, p.1)).collect();
-            let block = solver.add_body(&b.name, material, &at, velocity);
+            let block = solver.add_mesh_body(&b.name, material, &points, velocity);
             solver.blocks[block].shape_function = kernel;
-            let hex: Vec<_> = points.iter().map(|p| p.2).collect();
-            solver.set_hex_domains(block, &hex);
             continue;
         }
         let shape = shape::<D>(b, &field, check)?;

@@ -61,12 +61,12 @@ pub(super) type Vertex<const D: usize> = (SVector<f64, D>, f64, SVector<f64, D>)
 
 /// e_i = max_j |x^j_i − x_p,i| / h_i: the vertices' largest distance from the point per
 /// axis [cells].
-pub(super) fn vertex_extent<const D: usize>(
-    offsets: &[SVector<f64, D>],
+pub(super) fn vertex_extent<'a, const D: usize>(
+    offsets: impl IntoIterator<Item = &'a SVector<f64, D>>,
     inv_h: &SVector<f64, D>,
 ) -> SVector<f64, D> {
     offsets
-        .iter()
+        .into_iter()
         .fold(SVector::<f64, D>::zeros(), |e, d| e.sup(&d.abs()))
         .component_mul(inv_h)
 }
@@ -83,9 +83,7 @@ pub(super) fn vertex_weights<const D: usize>(
     if vertices.is_empty() {
         return Linear::evaluate(p, reach, n, grad);
     }
-    let offsets: [SVector<f64, D>; 8] =
-        std::array::from_fn(|j| vertices.get(j).map_or(SVector::zeros(), |v| v.0));
-    let e = vertex_extent(&offsets, p.inv_h);
+    let e = vertex_extent(vertices.iter().map(|v| &v.0), p.inv_h);
     let first: [i64; D] = std::array::from_fn(|k| floor_i64(p.xi[k] - e[k]));
     n.fill(0.0);
     grad.fill(SVector::zeros());

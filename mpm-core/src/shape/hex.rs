@@ -109,6 +109,11 @@ impl<const D: usize> Hex<D> {
         Hex::new(&vertices).expect("a box does not fold").1
     }
 
+    /// The half-extents of the vertices about the point [m] (the box that holds them).
+    pub fn half_extent(&self) -> SVector<f64, D> {
+        vertex_extent(&self.offset[..corners(D)], &SVector::repeat(1.0))
+    }
+
     /// Whether the point has a domain.
     pub fn is_none(&self) -> bool {
         self.volume == 0.0

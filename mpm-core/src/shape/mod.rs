@@ -63,6 +63,12 @@ pub struct Reach {
     pub pad: usize,
 }
 
+impl Default for Reach {
+    fn default() -> Self {
+        Reach::CELL
+    }
+}
+
 impl Reach {
     /// The linear kernel's reach: the 2ᴰ corners of the cell.
     pub const CELL: Reach = Reach { support: 2, pad: 0 };

@@ -49,7 +49,7 @@ impl<const D: usize> Solver<D> {
         for block in &self.blocks {
             let range = block.range.clone();
             let at: Domains<'_, D> = (&p.position, (&p.half_size, &p.deformation, &p.hex));
-            match block.shape_function.unwrap_or(self.settings.shape_function) {
+            match block.kernel(self.settings.shape_function) {
                 ShapeFunction::Linear => w.fill::<Linear>(grid, range, at),
                 ShapeFunction::UGimp => w.fill::<UGimp>(grid, range, at),
                 ShapeFunction::CpGimp => w.fill::<CpGimp>(grid, range, at),
@@ -107,8 +107,9 @@ impl<const D: usize> Solver<D> {
     /// half-extent [cells] over its points; returns it with that extent and its point.
     fn reach<K: Kernel<D>>(&self, block: usize) -> (Reach, f64, usize) {
         let range = self.blocks[block].range.clone();
+        let first = range.start;
         if !K::DOMAIN || range.is_empty() {
-            return (Reach::CELL, 0.0, range.start);
+            return (Reach::CELL, 0.0, first);
         }
         let (p, inv_h) = (&self.particles, &self.grid.inv_spacing);
         let (extent, widest) = range
@@ -124,7 +125,7 @@ impl<const D: usize> Solver<D> {
                 (K::extent(&point).max(), i)
             })
             .reduce(
-                || (0.0, self.blocks[block].range.start),
+                || (0.0, first),
                 |a, b| {
                     if b.0 > a.0 || (b.0 == a.0 && b.1 < a.1) {
                         b

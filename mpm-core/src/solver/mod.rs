@@ -31,6 +31,7 @@ use crate::contact::ContactState;
 use crate::failure::{Cause, SimulationError};
 use crate::grid::Grid;
 use crate::material_block::MaterialBlock;
+use crate::mesh::MeshPoint;
 use crate::observer::Observer;
 use crate::particles::Particles;
 use crate::rigid::RigidBody;
@@ -160,9 +161,7 @@ impl<const D: usize> Solver<D> {
 
     /// The shape functions of block `block`: its own, or the scene's.
     pub fn kernel_of(&self, block: usize) -> ShapeFunction {
-        self.blocks[block]
-            .shape_function
-            .unwrap_or(self.settings.shape_function)
+        self.blocks[block].kernel(self.settings.shape_function)
     }
 
     /// Give every point of block `block` the reference domain half-widths `half` [m]
@@ -172,24 +171,30 @@ impl<const D: usize> Solver<D> {
         self.particles.half_size[range].fill(half);
     }
 
-    /// Give the points of block `block` the hexahedral domains `hex` (one per point, in
-    /// order), for the `cpdi-hex` kernel; their box half-widths (`set_half_size`, used by
-    /// the other kernels and by contact) become the half-extents of the vertices.
-    pub fn set_hex_domains(&mut self, block: usize, hex: &[Hex<D>]) {
+    /// Add a body of one material from the points of a mesh (module `mesh`); returns its
+    /// block index. Each point keeps its element as its hexahedral domain (`cpdi-hex`);
+    /// its box half-widths (used by the other kernels and by contact) are the half-extents
+    /// of the element's vertices.
+    pub fn add_mesh_body(
+        &mut self,
+        name: &str,
+        material: Arc<dyn Material>,
+        points: &[MeshPoint<D>],
+        velocity: SVector<f64, D>,
+    ) -> usize {
+        let at: Vec<_> = points.iter().map(|p| (p.0, p.1)).collect();
+        let block = self.add_body(name, material, &at, velocity);
         let range = self.blocks[block].range.clone();
-        assert_eq!(
-            hex.len(),
-            range.len(),
-            "one domain per point of block {block}"
-        );
         let p = &mut self.particles;
         p.hex.resize(p.len(), Hex::none());
-        p.hex[range.clone()].copy_from_slice(hex);
-        for (half, h) in p.half_size[range].iter_mut().zip(hex) {
-            *half = h.offset[..crate::shape::corners(D)]
-                .iter()
-                .fold(SVector::zeros(), |e, d| e.sup(&d.abs()));
+        for ((hex, half), point) in p.hex[range.clone()]
+            .iter_mut()
+            .zip(&mut p.half_size[range])
+            .zip(points)
+        {
+            (*hex, *half) = (point.2, point.2.half_extent());
         }
+        block
     }
 
     pub fn add_rigid_body(&mut self, body: RigidBody<D>) {
