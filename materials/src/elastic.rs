@@ -46,10 +46,13 @@ impl<D: Scalar> Elastic<D> {
     /// `alpha_sigma`.
     pub fn tau(&self, fe: &M3<D>, dtheta: D, alpha_sigma: D) -> M3<D> {
         let b = fe * fe.transpose();
-        let ln_j = det(fe).ln();
-        let g = self.shear_modulus();
-        let p = self.lambda() * ln_j - c::<D>(3.0) * alpha_sigma * self.bulk_modulus() * dtheta;
-        (b - identity::<D>()) * g + identity::<D>() * p
+        let p = self.spherical(det(fe).ln(), dtheta, alpha_sigma);
+        (b - identity::<D>()) * self.shear_modulus() + identity::<D>() * p
+    }
+
+    /// The spherical part Λ ln J − 3 α_σ κ (θ − θ0) of τ [Pa] (τ = G (b − I) + this · I).
+    pub fn spherical(&self, ln_j: D, dtheta: D, alpha_sigma: D) -> D {
+        self.lambda() * ln_j - c::<D>(3.0) * alpha_sigma * self.bulk_modulus() * dtheta
     }
 
     /// Strain energy density ψ(F) per reference volume (isothermal), eq. 4.12.

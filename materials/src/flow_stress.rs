@@ -53,6 +53,11 @@ impl<D: Scalar> FlowStress<D> {
     /// τ_y at accumulated plastic strain `alpha`, plastic rate `alpha_dot` [1/s] and
     /// temperature `theta` [K] (reference temperature `theta0`).
     pub fn tau_y(&self, alpha: D, alpha_dot: D, theta: D, theta0: D) -> D {
+        self.tau_y_athermal(alpha, alpha_dot) * self.thermal_factor(theta, theta0)
+    }
+
+    /// τ_y without its thermal factor: τ_y = `tau_y_athermal` · `thermal_factor`.
+    pub fn tau_y_athermal(&self, alpha: D, alpha_dot: D) -> D {
         match self {
             FlowStress::Voce(p) => {
                 p.tau_inf + (p.tau0 - p.tau_inf) * (-p.eta * alpha).exp() + p.h * alpha
@@ -68,7 +73,7 @@ impl<D: Scalar> FlowStress<D> {
                 } else {
                     c::<D>(1.0)
                 };
-                hardening * rate * self.thermal_factor(theta, theta0)
+                hardening * rate
             }
         }
     }
@@ -113,7 +118,7 @@ impl<D: Scalar> FlowStress<D> {
     }
 }
 
-/// The flow stress at one plastic increment of a local solve (see `along_log_increment`).
+/// The flow stress at one plastic increment of a local solve (see `LogIncrementPath`).
 #[derive(Debug, Clone, Copy)]
 pub struct AtIncrement {
     /// Δα = e^u [-]
@@ -124,68 +129,181 @@ pub struct AtIncrement {
     pub dtau_y_du: f64,
 }
 
+/// The flow stress at the start of a step, τ_y0 = τ_y(α_n, 0, θ_n) [Pa], which decides
+/// whether a trial state yields, and the parts of it that a return reuses.
+#[derive(Debug, Clone, Copy)]
+pub struct Onset {
+    pub tau_y0: f64,
+    alpha_n: f64,
+    /// α_n^N (JC with α_n > 0, else 0).
+    alpha_n_pow: f64,
+    /// 1 − θ*^M at θ_n (1 for Voce).
+    thermal: f64,
+}
+
 impl FlowStress<f64> {
+    /// τ_y(α_n, 0, θ_n) at `alpha_n` and `theta` [K] (reference temperature `theta0`).
+    pub fn onset(&self, alpha_n: f64, theta: f64, theta0: f64) -> Onset {
+        let thermal = self.thermal_factor(theta, theta0);
+        let (tau_y0, alpha_n_pow) = match self {
+            FlowStress::Voce(_) => (self.tau_y_athermal(alpha_n, 0.0), 0.0),
+            FlowStress::JohnsonCook(p) => {
+                let power = if alpha_n > 0.0 {
+                    alpha_n.powf(p.n)
+                } else {
+                    0.0
+                };
+                ((p.a + p.b * power) * thermal, power)
+            }
+        };
+        Onset {
+            tau_y0,
+            alpha_n,
+            alpha_n_pow,
+            thermal,
+        }
+    }
+}
+
+/// The flow stress along the local solve of one return, in u = ln Δα
+/// (`return_principal`'s hot path): α = α_n + e^u, α̇ = e^u/Δt and θ = θ_n frozen, so the
+/// thermal factor is given once and the JC rate term 1 + C (u − ln(Δt α̇0)) needs no
+/// logarithm. `at` equals `FlowStress::tau_y` to round-off (tested).
+#[derive(Debug, Clone, Copy)]
+pub struct LogIncrementPath<'a> {
+    flow: &'a FlowStress<f64>,
+    alpha_n: f64,
+    /// ln(Δt α̇0), the JC rate kink (0 for Voce).
+    ln_dalpha0: f64,
+    /// 1 − θ*^M at θ_n.
+    thermal: f64,
+    /// α^N = α_n^N (1 + x)^N with x = Δα/α_n, by its binomial series where that is exact.
+    power: SeriesPower,
+}
+
+/// Terms of the binomial series after the constant one.
+const SERIES_TERMS: usize = 10;
+
+/// α^N near α_n > 0 by its binomial series, exact to round-off: the series is used where
+/// its first omitted term, which bounds the remainder for N < 11 (Lagrange form), is below
+/// half an ulp: Δα/α_n up to 0.05 at N = 0.31. A plastic step of a point in flow has
+/// Δα/α_n ~ 1e-4..1e-2, so `powf` is left for first yield and the first steps of flow.
+#[derive(Debug, Clone, Copy)]
+struct SeriesPower {
+    alpha_n: f64,
+    /// α_n^N (0 where the series is not used).
+    alpha_n_pow: f64,
+    /// Binomial coefficients (N choose k), k = 1..=10.
+    coefficients: [f64; SERIES_TERMS],
+    /// |N choose 11|, the first omitted coefficient (infinite where the series is not
+    /// used).
+    omitted: f64,
+}
+
+impl SeriesPower {
+    /// The series about `alpha_n` with `alpha_n_pow` = α_n^N.
+    fn new(alpha_n: f64, alpha_n_pow: f64, n: f64) -> Self {
+        let mut coefficients = [0.0; SERIES_TERMS];
+        let mut c = 1.0;
+        for (k, slot) in coefficients.iter_mut().enumerate() {
+            c *= (n - k as f64) / (k as f64 + 1.0);
+            *slot = c;
+        }
+        let usable = alpha_n > 0.0 && n < (SERIES_TERMS + 1) as f64;
+        SeriesPower {
+            alpha_n,
+            alpha_n_pow,
+            coefficients,
+            omitted: if usable {
+                (c * (n - SERIES_TERMS as f64) / (SERIES_TERMS as f64 + 1.0)).abs()
+            } else {
+                f64::INFINITY
+            },
+        }
+    }
+
+    /// Whether the series is exact to round-off at x = Δα/α_n ≥ 0.
+    fn converged(&self, x: f64) -> bool {
+        self.omitted * x.powi(SERIES_TERMS as i32 + 1) <= 0.5 * f64::EPSILON
+    }
+
+    /// α^N at α = α_n + `dalpha`.
+    fn at(&self, dalpha: f64, n: f64) -> f64 {
+        let x = dalpha / self.alpha_n;
+        if self.converged(x) {
+            let tail = self
+                .coefficients
+                .iter()
+                .rev()
+                .fold(0.0, |acc, c| (acc + c) * x);
+            self.alpha_n_pow * (1.0 + tail)
+        } else {
+            (self.alpha_n + dalpha).powf(n)
+        }
+    }
+}
+
+impl<'a> LogIncrementPath<'a> {
+    /// The path from the `onset` state over a step `dt` [s].
+    pub fn new(flow: &'a FlowStress<f64>, onset: &Onset, dt: f64) -> Self {
+        let (ln_dalpha0, n) = match flow {
+            FlowStress::JohnsonCook(p) => ((dt * p.alpha_dot0).ln(), p.n),
+            FlowStress::Voce(_) => (0.0, f64::INFINITY),
+        };
+        LogIncrementPath {
+            flow,
+            alpha_n: onset.alpha_n,
+            ln_dalpha0,
+            thermal: onset.thermal,
+            power: SeriesPower::new(onset.alpha_n, onset.alpha_n_pow, n),
+        }
+    }
+
+    /// Δα, τ_y and dτ_y/du at u = ln Δα.
+    pub fn at(&self, u: f64) -> AtIncrement {
+        let dalpha = u.exp();
+        let alpha = self.alpha_n + dalpha;
+        let (tau_y, dtau_y_du) = match self.flow {
+            FlowStress::Voce(p) => {
+                let decay = (p.tau0 - p.tau_inf) * (-p.eta * alpha).exp();
+                (
+                    p.tau_inf + decay + p.h * alpha,
+                    dalpha * (p.h - p.eta * decay),
+                )
+            }
+            FlowStress::JohnsonCook(p) => {
+                let alpha_pow_n = self.power.at(dalpha, p.n);
+                let hardening = p.a + p.b * alpha_pow_n;
+                let d_hardening = p.b * p.n * alpha_pow_n / alpha * dalpha;
+                let excess = u - self.ln_dalpha0;
+                let (rate, d_rate) = if excess > 0.0 {
+                    (1.0 + p.c * excess, p.c)
+                } else {
+                    (1.0, 0.0)
+                };
+                (
+                    hardening * rate * self.thermal,
+                    (d_hardening * rate + hardening * d_rate) * self.thermal,
+                )
+            }
+        };
+        AtIncrement {
+            dalpha,
+            tau_y,
+            dtau_y_du,
+        }
+    }
+
     /// The u = ln Δα at which the JC rate term alone takes up the overstress ratio
     /// q/τ_y0 > 1 of a trial state (τ_y0 = τ_y(α_n, 0, θ_n)): 1 + C (u − ln(Δt α̇0)) = q/τ_y0.
     /// Hardening and the elastic relaxation q − 3G̃ Δα only lower the root of the return,
     /// so this bounds its ln Δα from above. `None` for a law without a rate term.
-    pub fn log_increment_bound(&self, overstress: f64, dt: f64) -> Option<f64> {
-        match self {
+    pub fn rate_only_bound(&self, overstress: f64) -> Option<f64> {
+        match self.flow {
             FlowStress::JohnsonCook(p) if p.c > 0.0 => {
-                Some((dt * p.alpha_dot0).ln() + (overstress - 1.0) / p.c)
+                Some(self.ln_dalpha0 + (overstress - 1.0) / p.c)
             }
             _ => None,
-        }
-    }
-
-    /// The law along a local solve in u = ln Δα (`return_principal`'s hot path):
-    /// α = α_n + e^u, α̇ = e^u/Δt and θ = θ_n frozen, so the thermal factor is computed once and
-    /// the JC rate term 1 + C (u − ln(Δt α̇0)) needs no logarithm. The returned closure
-    /// gives Δα, τ_y and dτ_y/du; it equals `tau_y` to round-off (tested).
-    pub fn along_log_increment(
-        &self,
-        alpha_n: f64,
-        dt: f64,
-        theta: f64,
-        theta0: f64,
-    ) -> impl Fn(f64) -> AtIncrement + '_ {
-        let thermal = self.thermal_factor(theta, theta0);
-        let ln_dalpha0 = match self {
-            FlowStress::JohnsonCook(p) => (dt * p.alpha_dot0).ln(),
-            FlowStress::Voce(_) => 0.0,
-        };
-        move |u: f64| {
-            let dalpha = u.exp();
-            let alpha = alpha_n + dalpha;
-            let (tau_y, dtau_y_du) = match self {
-                FlowStress::Voce(p) => {
-                    let decay = (p.tau0 - p.tau_inf) * (-p.eta * alpha).exp();
-                    (
-                        p.tau_inf + decay + p.h * alpha,
-                        dalpha * (p.h - p.eta * decay),
-                    )
-                }
-                FlowStress::JohnsonCook(p) => {
-                    let power = alpha.powf(p.n);
-                    let hardening = p.a + p.b * power;
-                    let d_hardening = p.b * p.n * power / alpha * dalpha;
-                    let excess = u - ln_dalpha0;
-                    let (rate, d_rate) = if excess > 0.0 {
-                        (1.0 + p.c * excess, p.c)
-                    } else {
-                        (1.0, 0.0)
-                    };
-                    (
-                        hardening * rate * thermal,
-                        (d_hardening * rate + hardening * d_rate) * thermal,
-                    )
-                }
-            };
-            AtIncrement {
-                dalpha,
-                tau_y,
-                dtau_y_du,
-            }
         }
     }
 }
@@ -196,7 +314,7 @@ mod tests {
     use num_dual::Dual64;
 
     #[test]
-    fn along_log_increment_matches_tau_y_and_its_derivative() {
+    fn log_increment_path_matches_tau_y_and_its_derivative() {
         let laws = [
             FlowStress::JohnsonCook(JohnsonCookLaw {
                 a: 800e6,
@@ -216,12 +334,12 @@ mod tests {
         ];
         let (alpha_n, dt, theta, theta0) = (0.05, 1e-5, 400.0, 293.15);
         for law in &laws {
-            let along = law.along_log_increment(alpha_n, dt, theta, theta0);
+            let along = LogIncrementPath::new(law, &law.onset(alpha_n, theta, theta0), dt);
             let dual = law.map(|_, v| Dual64::from(v));
             // Below and above the rate kink Δα = Δt α̇0 = 1e-8.
             for dalpha in [1e-10, 3e-9, 2e-8, 1e-4, 0.05] {
                 let u = f64::ln(dalpha);
-                let at = along(u);
+                let at = along.at(u);
                 assert_eq!(at.dalpha, u.exp());
                 let (tau, dtau_du) = (at.tau_y, at.dtau_y_du);
                 let d = Dual64::new(dalpha, dalpha); // d/du of e^u
@@ -245,6 +363,30 @@ mod tests {
         }
     }
 
+    /// The binomial series of α^N agrees with `powf` to 2 ulp wherever it is used, and is
+    /// used up to Δα/α_n = 0.02 for exponents of real JC cards and beyond.
+    #[test]
+    fn series_power_is_exact_to_round_off() {
+        for n in [0.09, 0.31, 0.5, 0.83, 1.0, 1.7] {
+            let power = SeriesPower::new(1.0, 1.0, n);
+            assert!(power.converged(0.02), "N {n}: series not used at 0.02");
+            for alpha_n in [1e-3, 0.05, 1.2] {
+                let power = SeriesPower::new(alpha_n, alpha_n.powf(n), n);
+                for x in [1e-9, 1e-6, 1e-4, 1e-3, 0.01, 0.02, 0.04, 0.08, 0.3] {
+                    let dalpha = x * alpha_n;
+                    let exact = (alpha_n + dalpha).powf(n);
+                    let err = (power.at(dalpha, n) / exact - 1.0).abs();
+                    assert!(
+                        err <= 2.0 * f64::EPSILON,
+                        "N {n}, α_n {alpha_n}, x {x:e}: {err:e}"
+                    );
+                }
+            }
+        }
+        let virgin = SeriesPower::new(0.0, 0.0, 0.31);
+        assert_eq!(virgin.at(1e-4, 0.31), 1e-4f64.powf(0.31));
+    }
+
     /// The rate-only increment bounds the root of the scalar return q − 3G e^u = τ_y(u)
     /// (found by bisection) from above, for small and large overstress.
     #[test]
@@ -259,11 +401,13 @@ mod tests {
             theta_m: 1356.0,
         });
         let (alpha_n, dt, theta, theta0, three_g) = (0.05, 3e-8, 400.0, 293.15, 3.0 * 46e9);
-        let along = law.along_log_increment(alpha_n, dt, theta, theta0);
+        let onset = law.onset(alpha_n, theta, theta0);
+        let along = LogIncrementPath::new(&law, &onset, dt);
         let tau_y0 = law.tau_y(alpha_n, 0.0, theta, theta0);
+        assert!((onset.tau_y0 / tau_y0 - 1.0).abs() < 1e-15);
         for overstress in [1.001, 1.05, 1.3, 3.0] {
             let q = overstress * tau_y0;
-            let f = |u: f64| q - three_g * u.exp() - along(u).tau_y;
+            let f = |u: f64| q - three_g * u.exp() - along.at(u).tau_y;
             let (mut below, mut above) = (-60.0, (q / three_g).ln());
             assert!(f(below) > 0.0 && f(above) < 0.0);
             for _ in 0..200 {
@@ -274,8 +418,8 @@ mod tests {
                     above = mid;
                 }
             }
-            let bound = law
-                .log_increment_bound(overstress, dt)
+            let bound = along
+                .rate_only_bound(overstress)
                 .expect("JC has a rate term");
             assert!(
                 below <= bound,
@@ -288,6 +432,7 @@ mod tests {
             eta: 12.0,
             h: 1e8,
         });
-        assert_eq!(voce.log_increment_bound(1.1, dt), None);
+        let voce_path = LogIncrementPath::new(&voce, &voce.onset(alpha_n, theta, theta0), dt);
+        assert_eq!(voce_path.rate_only_bound(1.1), None);
     }
 }

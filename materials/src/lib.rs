@@ -10,6 +10,7 @@ pub mod any_model;
 pub mod driver;
 pub mod elastic;
 pub mod error;
+pub mod exp_small;
 pub mod expm;
 pub mod flow_stress;
 pub mod limits;

@@ -135,29 +135,41 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
         }
         let fe_trial = f * old.fp_inv;
         let tau_trial = self.tau(&fe_trial, old.theta);
-        let tau_y0 = self.tau_y(old.alpha, c(0.0), dt, old.theta);
-        let phi_trial = von_mises(&tau_trial) - tau_y0;
-        if phi_trial.re() <= 0.0 {
+        // Yielding is decided in real arithmetic (φ^tr is not carried further).
+        let (model, old_re) = (self.re(), old.re());
+        let onset = model
+            .flow
+            .onset(old_re.alpha, old_re.theta, model.thermal.theta0);
+        let phi_trial = von_mises(&tau_trial).re() - onset.tau_y0;
+        if phi_trial <= 0.0 {
             return Ok((tau_trial / j, *old));
         }
-        let model = self.re();
-        let (f_re, old_re) = (re(f), old.re());
-        let (fp_inv_re, alpha_re) = match self.return_map {
+        let f_re = re(f);
+        // (Fp⁻¹, α) in real arithmetic, and τ where the return gives it.
+        let (fp_inv_re, alpha_re, tau_re) = match self.return_map {
             ReturnMap::Reference => {
                 // Perfectly plastic estimate of Δα (radial return with 3G) as the first guess.
-                let dalpha0 = phi_trial.re() / (3.0 * model.elastic.shear_modulus());
-                return_reference::solve(&model, &f_re, &old_re, dt, dalpha0)?
+                let dalpha0 = phi_trial / (3.0 * model.elastic.shear_modulus());
+                let (fp_inv, alpha) = return_reference::solve(&model, &f_re, &old_re, dt, dalpha0)?;
+                (fp_inv, alpha, None)
             }
             ReturnMap::Principal => {
-                return_principal::solve(&model, &f_re, &old_re, dt, tau_y0.re())?
+                let r = return_principal::solve(&model, &f_re, &old_re, dt, &onset)?;
+                (r.fp_inv, r.alpha, Some(r.tau))
             }
         };
-        let (fp_inv, alpha) = if D::NDERIV == 0 {
-            (lift(&fp_inv_re), c::<D>(alpha_re))
+        let (fp_inv, alpha, tau) = if D::NDERIV == 0 {
+            let fp_inv = lift(&fp_inv_re);
+            let tau = match tau_re {
+                Some(tau) => lift(&tau),
+                None => self.tau(&(f * fp_inv), old.theta),
+            };
+            (fp_inv, c::<D>(alpha_re), tau)
         } else {
-            return_reference::implicit_step(self, f, old, dt, &fp_inv_re, alpha_re)?
+            let (fp_inv, alpha) =
+                return_reference::implicit_step(self, f, old, dt, &fp_inv_re, alpha_re)?;
+            (fp_inv, alpha, self.tau(&(f * fp_inv), old.theta))
         };
-        let tau = self.tau(&(f * fp_inv), old.theta);
         let dalpha = alpha - old.alpha;
         // τ_VM = τ_y at the converged return (φ = 0 holds identically in the parameters,
         // so their derivatives agree too) and costs no transcendental functions.

@@ -6,10 +6,13 @@
 //!   φ = √(3/2) ‖s‖ − τ_y(α_n + Δα, Δα/Δt, θ_n) = 0,
 //! 4 unknowns (ε_1..3, ln Δα) instead of 10 (ln Δα as in `return_reference`). Then Fe = exp(−√(3/2) Δα N) Fe^tr with
 //! exp(−√(3/2) Δα N) = Σ_a exp(−√(3/2) Δα n_a) v_a v_aᵀ and Fp⁻¹ = F⁻¹ Fe.
-//! The volumetric part ln J^e is unchanged (tr N = 0), so det Fp = 1 holds exactly.
+//! The volumetric part ln J^e is unchanged (tr N = 0), so det Fp = 1 holds exactly, and
+//! the returned Kirchhoff stress is τ = Σ_a [G (b_a − 1) + p] v_a v_aᵀ (eq. 4.22 in the
+//! eigenbasis, b_a = e^{2ε_a}, p of ln J^e = Σ_a ε_a^tr): no second pass through Fe.
 
 use crate::error::MaterialError;
-use crate::flow_stress::AtIncrement;
+use crate::exp_small::exp_small;
+use crate::flow_stress::{LogIncrementPath, Onset};
 use crate::local_newton::{self, Jacobian};
 use crate::material::State;
 use crate::plasticity::ElastoPlastic;
@@ -23,11 +26,11 @@ const SCALAR_GUESS_STEPS: usize = 12;
 const SCALAR_GUESS_TOL: f64 = 1e-3;
 
 /// The fixed data of one local problem.
-struct Problem<T: Fn(f64) -> AtIncrement> {
+struct Problem<'a> {
     g: f64,
     eps_trial: Vector3<f64>,
-    /// The flow stress at u = ln Δα.
-    tau_y: T,
+    /// The flow stress along u = ln Δα.
+    path: LogIncrementPath<'a>,
 }
 
 /// The 4×4 Jacobian [[A, c], [dᵀ, e]]: the 3×3 block A = ∂r_ε/∂ε, bordered by the
@@ -56,29 +59,29 @@ impl Jacobian<4> for Bordered {
     }
 }
 
-impl<T: Fn(f64) -> AtIncrement> Problem<T> {
+impl Problem<'_> {
     /// Residual r(y) and its Jacobian, derived by hand (this is the hot path):
     /// ∂s_a/∂ε_b = 2G (b_a δ_ab − b_b/3), ∂‖s‖/∂ε_b = 2G n_b b_b (Σ n_a = 0),
-    /// ∂n_a/∂ε_b = (∂s_a/∂ε_b − n_a ∂‖s‖/∂ε_b)/‖s‖.
+    /// ∂n_a/∂ε_b = (∂s_a/∂ε_b − n_a ∂‖s‖/∂ε_b)/‖s‖ = 2G/‖s‖ (b_a δ_ab − (1/3 + n_a n_b) b_b).
     fn eval(&self, y: &SVector<f64, 4>) -> (SVector<f64, 4>, Bordered) {
         let k = 1.5f64.sqrt();
         let g = self.g;
-        let b = Vector3::new((2.0 * y[0]).exp(), (2.0 * y[1]).exp(), (2.0 * y[2]).exp());
-        let mean = b.mean();
-        let s = b.add_scalar(-mean) * g;
+        let b = Vector3::new(y[0], y[1], y[2]).map(|e| exp_small(2.0 * e));
+        let s = b.add_scalar(-b.mean()) * g;
         let s_norm = s.norm();
         let n = s / s_norm;
-        let at = (self.tau_y)(y[3]);
+        let at = self.path.at(y[3]);
         let k_dalpha = k * at.dalpha;
         let mut r = SVector::<f64, 4>::zeros();
         let mut a = Matrix3::<f64>::identity();
-        for i in 0..3 {
-            r[i] = y[i] - self.eps_trial[i] + k_dalpha * n[i];
-            for j in 0..3 {
-                let ds = 2.0 * g * (if i == j { b[i] } else { 0.0 } - b[j] / 3.0);
-                let dn = (ds - n[i] * 2.0 * g * n[j] * b[j]) / s_norm;
-                a[(i, j)] += k_dalpha * dn;
+        let scale = k_dalpha * 2.0 * g / s_norm;
+        for j in 0..3 {
+            r[j] = y[j] - self.eps_trial[j] + k_dalpha * n[j];
+            let scaled_b = scale * b[j];
+            for i in 0..3 {
+                a[(i, j)] -= scaled_b * (1.0 / 3.0 + n[i] * n[j]);
             }
+            a[(j, j)] += scaled_b;
         }
         r[3] = (k * s_norm - at.tau_y) / g;
         let jac = Bordered {
@@ -91,48 +94,88 @@ impl<T: Fn(f64) -> AtIncrement> Problem<T> {
     }
 }
 
+/// A converged return: Fp⁻¹, α and the Kirchhoff stress τ [Pa] at θ_n.
+#[derive(Debug, Clone, Copy)]
+pub struct Returned {
+    pub fp_inv: M3<f64>,
+    pub alpha: f64,
+    pub tau: M3<f64>,
+}
+
 /// Solve the local problem in real arithmetic for a trial state above the flow stress
-/// `tau_y0` = τ_y(α_n, 0, θ_n) [Pa] at which it yields; returns (Fp⁻¹, α).
+/// `onset.tau_y0` = τ_y(α_n, 0, θ_n) [Pa] at which it yields.
 pub fn solve(
     m: &ElastoPlastic<f64>,
     f: &M3<f64>,
     old: &State<f64>,
     dt: f64,
-    tau_y0: f64,
-) -> Result<(M3<f64>, f64), MaterialError> {
+    onset: &Onset,
+) -> Result<Returned, MaterialError> {
     let fe_trial = f * old.fp_inv;
-    let be_trial = fe_trial * fe_trial.transpose();
-    let eigen = sym_eigen::decompose(&be_trial);
-    let b_trial = eigen.values;
-    let eps_trial = b_trial.map(|l2| 0.5 * l2.ln());
-    let g = m.elastic.shear_modulus();
+    let eigen = sym_eigen::decompose(&(fe_trial * fe_trial.transpose()));
+    let eps_trial = eigen.values.map(|l2| 0.5 * l2.ln());
+    let problem = Problem {
+        g: m.elastic.shear_modulus(),
+        eps_trial,
+        path: LogIncrementPath::new(&m.flow, onset, dt),
+    };
+    let y0 = first_guess(&problem, &eigen.values, onset.tau_y0);
+    let y = local_newton::solve(|y| problem.eval(y), y0)?;
+    // exp(−√(3/2) Δα N) = diag(λ_a / λ_a^tr) in the eigenbasis.
+    let ratio = Vector3::new(
+        y[0] - eps_trial[0],
+        y[1] - eps_trial[1],
+        y[2] - eps_trial[2],
+    )
+    .map(exp_small);
+    let flow = eigen.with_values(&ratio);
+    let f_inv = inverse(f).ok_or(MaterialError::InvertedDeformation {
+        det_f: f.determinant(),
+    })?;
+    let p = m.elastic.spherical(
+        eps_trial.sum(),
+        old.theta - m.thermal.theta0,
+        m.thermal.alpha_sigma,
+    );
+    let tau_a = eigen
+        .values
+        .component_mul(&ratio.component_mul(&ratio))
+        .map(|b| problem.g * (b - 1.0) + p);
+    Ok(Returned {
+        fp_inv: f_inv * flow * fe_trial,
+        alpha: old.alpha + y[3].exp(),
+        tau: eigen.with_values(&tau_a),
+    })
+}
+
+/// The start of the 4×4 Newton solve from the trial stretches `b_trial` = λ_a^tr².
+///
+/// The radial return of the Neo-Hooke deviator s = G dev be, linearized in Δα:
+/// b_a = b_a^tr e^{−2k Δα n_a} gives dq/dΔα = −3 G̃ with G̃ = G Σ n_a² b_a^tr (k = √(3/2),
+/// Σ n_a = 0), so q^tr − 3 G̃ Δα = τ_y(α_n + Δα, Δα/Δt, θ_n) is solved by scalar Newton
+/// steps in u = ln Δα, with the rate and hardening terms of the flow stress. They start from the lower of two upper bounds
+/// of the root: the rate-free (q^tr − τ_y0)/(3G̃), and the increment whose JC rate term
+/// alone takes up q^tr/τ_y0; at MPM time steps the second is within ≈ 0.5 of the root, the
+/// first 2-4 away. q^tr − τ_y(Δα) is a small difference of large numbers, so q^tr must be
+/// the Neo-Hooke value: a log-strain (Hencky) estimate is off by O(ε_e) in q and by
+/// percents in Δα.
+fn first_guess(problem: &Problem, b_trial: &Vector3<f64>, tau_y0: f64) -> SVector<f64, 4> {
+    let (g, eps_trial) = (problem.g, problem.eps_trial);
     let k = 1.5f64.sqrt();
-    // First guess: the radial return of the Neo-Hooke deviator s = G dev be, linearized in
-    // Δα: b_a = b_a^tr e^{−2k Δα n_a} gives dq/dΔα = −3 G̃ with G̃ = G Σ n_a² b_a^tr
-    // (k = √(3/2), Σ n_a = 0), so q^tr − 3 G̃ Δα = τ_y(α_n + Δα, Δα/Δt, θ_n) is solved by
-    // scalar Newton steps in u = ln Δα, with the rate and hardening terms of the flow
-    // stress. They start from the lower of two upper bounds of the root: the rate-free
-    // (q^tr − τ_y0)/(3G̃), and the increment whose JC rate term alone takes up q^tr/τ_y0;
-    // at MPM time steps the second is within ≈ 0.5 of the root, the first 2-4 away.
-    // q^tr − τ_y(Δα) is a small difference of large numbers, so q^tr must be the Neo-Hooke
-    // value: a log-strain (Hencky) estimate is off by O(ε_e) in q and by percents in Δα.
     let s_trial = b_trial.add_scalar(-b_trial.mean()) * g;
     let q_trial = k * s_trial.norm();
     let n_trial = s_trial / s_trial.norm();
-    let g_tilde = g * n_trial.component_mul(&n_trial).dot(&b_trial);
-    let tau_y = m
-        .flow
-        .along_log_increment(old.alpha, dt, old.theta, m.thermal.theta0);
+    let g_tilde = g * n_trial.component_mul(&n_trial).dot(b_trial);
     // (φ^tr > 0 was decided on σ, q^tr here comes from eigenvalues: at φ^tr ≈ 0 round-off
     // may leave them a few ulps apart.)
     let overstress = (q_trial - tau_y0).max(f64::EPSILON * q_trial);
     let rate_free = (overstress / (3.0 * g_tilde)).ln();
-    let mut u = match m.flow.log_increment_bound(q_trial / tau_y0, dt) {
+    let mut u = match problem.path.rate_only_bound(q_trial / tau_y0) {
         Some(rate_only) => rate_free.min(rate_only),
         None => rate_free,
     };
     for _ in 0..SCALAR_GUESS_STEPS {
-        let at = tau_y(u);
+        let at = problem.path.at(u);
         let step = (q_trial - 3.0 * g_tilde * at.dalpha - at.tau_y)
             / (3.0 * g_tilde * at.dalpha + at.dtau_y_du);
         u += step.clamp(-1.0, 1.0);
@@ -159,32 +202,12 @@ pub fn solve(
         u = dalpha.ln();
     }
     let shift = n_trial * (k * dalpha);
-    let y0 = SVector::<f64, 4>::new(
+    SVector::<f64, 4>::new(
         eps_trial[0] - shift[0],
         eps_trial[1] - shift[1],
         eps_trial[2] - shift[2],
         u,
-    );
-    let problem = Problem {
-        g,
-        eps_trial,
-        tau_y,
-    };
-    let y = local_newton::solve(|y| problem.eval(y), y0)?;
-    let dalpha = y[3].exp();
-    // exp(−√(3/2) Δα N) = diag(λ_a / λ_a^tr) in the eigenbasis.
-    let ratio = Vector3::new(
-        y[0] - eps_trial[0],
-        y[1] - eps_trial[1],
-        y[2] - eps_trial[2],
     )
-    .map(f64::exp);
-    let v = eigen.vectors;
-    let flow = v * M3::from_diagonal(&ratio) * v.transpose();
-    let f_inv = inverse(f).ok_or(MaterialError::InvertedDeformation {
-        det_f: f.determinant(),
-    })?;
-    Ok((f_inv * flow * fe_trial, old.alpha + dalpha))
 }
 
 #[cfg(test)]
@@ -223,9 +246,7 @@ mod tests {
         let p = Problem {
             g: m.elastic.shear_modulus(),
             eps_trial: Vector3::new(0.03, -0.01, -0.015),
-            tau_y: m
-                .flow
-                .along_log_increment(0.1, 1e-5, 350.0, m.thermal.theta0),
+            path: LogIncrementPath::new(&m.flow, &m.flow.onset(0.1, 350.0, m.thermal.theta0), 1e-5),
         };
         let y = SVector::<f64, 4>::new(0.02, -0.008, -0.012, (0.004f64).ln());
         let (_, jac) = p.eval(&y);
@@ -312,11 +333,9 @@ mod rate_kink {
             alpha: alpha_n,
             theta,
         };
-        let tau_y = m
-            .flow
-            .along_log_increment(alpha_n, dt, theta, m.thermal.theta0);
-        let tau_y0 = tau_y(f64::NEG_INFINITY).tau_y;
-        let (fp_inv, alpha) = solve(&m, &f, &old, dt, tau_y0).expect("converges");
+        let onset = m.flow.onset(alpha_n, theta, m.thermal.theta0);
+        let path = LogIncrementPath::new(&m.flow, &onset, dt);
+        let Returned { fp_inv, alpha, .. } = solve(&m, &f, &old, dt, &onset).expect("converges");
         let dalpha = alpha - alpha_n;
         assert!(
             dalpha > dt * law.alpha_dot0,
@@ -326,7 +345,7 @@ mod rate_kink {
         let fe = f * fp_inv;
         let b = sym_eigen::decompose(&(fe * fe.transpose())).values;
         let q = 1.5f64.sqrt() * m.elastic.shear_modulus() * b.add_scalar(-b.mean()).norm();
-        let tau = tau_y(dalpha.ln()).tau_y;
+        let tau = path.at(dalpha.ln()).tau_y;
         assert!(
             (q - tau).abs() < 1e-9 * tau,
             "q = {q:e} against τ_y = {tau:e}: {:e}",
