@@ -105,3 +105,41 @@ fn the_force_rises_with_friction_and_hardly_depends_on_the_penalty() {
         .max(kappa_double.mean_change.abs());
     assert!(kappa < mu_half.mean_change.abs().min(mu_double.mean_change.abs()));
 }
+
+/// The fit's contact changes act on a copy of the discretized model
+/// (`ShpbModel::with_contact`); rebuilding the model from changed settings must give the
+/// same run. Not to the bit: √2² ≠ 2 in floating point, so the penalty differs by an ulp.
+#[test]
+fn contact_changes_on_the_template_equal_a_rebuilt_model() {
+    let Some(s) = scene(Drive::MeasuredVelocity) else {
+        return;
+    };
+    let material = materials::load_elasto_plastic(&s.material_file).unwrap();
+    let model = s.model(&material).unwrap();
+    for change in &fitting::shpb_model::CONTACT_CHANGES {
+        let changed = model
+            .with_contact(change)
+            .unwrap()
+            .run(s.material(&material))
+            .unwrap()
+            .history;
+        let rebuilt = ShpbScene {
+            settings: s.settings.with_contact(change),
+            ..s.clone()
+        };
+        let expected = rebuilt
+            .model(&material)
+            .unwrap()
+            .run(s.material(&material))
+            .unwrap()
+            .history;
+        let peak = expected
+            .force_transmitted_n
+            .iter()
+            .fold(0.0f64, |m, f| m.max(f.abs()));
+        assert_eq!(changed.time_s.len(), expected.time_s.len(), "{}", change.label);
+        for (a, b) in changed.force_transmitted_n.iter().zip(&expected.force_transmitted_n) {
+            assert!((a - b).abs() <= 1e-9 * peak, "{}: {a} vs {b} N", change.label);
+        }
+    }
+}

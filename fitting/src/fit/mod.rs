@@ -6,6 +6,7 @@
 
 pub use verify::verify_cases;
 
+pub mod assumptions;
 pub mod bootstrap;
 pub mod charts;
 pub mod cross_validation;

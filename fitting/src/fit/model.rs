@@ -7,6 +7,7 @@
 //! forward finite difference with columns evaluated in parallel, at its own step. The optimizers see only this
 //! trait, so a new model level plugs in without touching them.
 
+use crate::shpb_model::ContactChange;
 use anyhow::Result;
 use materials::material::Model;
 use materials::plasticity::ElastoPlastic;
@@ -41,6 +42,12 @@ pub trait ExperimentModel: Send + Sync {
     /// differences cost one run per free parameter more).
     fn jacobian_is_cheap(&self) -> bool {
         false
+    }
+
+    /// This experiment's model with its contact assumptions changed (penalty stiffness κ
+    /// and friction μ, `fit::assumptions`); `None` for a level without contact.
+    fn with_contact(&self, _change: &ContactChange) -> Result<Option<Box<dyn ExperimentModel>>> {
+        Ok(None)
     }
 
     /// Prediction and its Jacobian d(prediction)/d(parameter) (rows: samples, columns:

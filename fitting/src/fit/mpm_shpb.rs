@@ -42,7 +42,7 @@ use super::model::{ExperimentModel, Material};
 use crate::shpb::pulses::SMOOTHING_S;
 use crate::shpb::signal::{cumulative_integral, interpolate};
 use crate::shpb_model::record::preheated;
-use crate::shpb_model::ShpbModel;
+use crate::shpb_model::{ContactChange, ShpbModel};
 use anyhow::Result;
 
 /// Relative forward-difference step of an MPM level.
@@ -138,6 +138,14 @@ impl ExperimentModel for MpmShpb {
 
     fn fd_step(&self) -> f64 {
         FD_STEP
+    }
+
+    fn with_contact(&self, change: &ContactChange) -> Result<Option<Box<dyn ExperimentModel>>> {
+        Ok(Some(Box::new(MpmShpb {
+            model: self.model.with_contact(change)?,
+            sample_times: self.sample_times.clone(),
+            ..*self
+        })))
     }
 }
 

@@ -98,6 +98,15 @@ impl Block {
         })
     }
 
+    /// Residuals r_k = √(w/n) (ŷ_k − y_k)/s of `predicted` ŷ.
+    pub fn residuals<'a>(&'a self, predicted: &'a [f64]) -> impl Iterator<Item = f64> + 'a {
+        let f = self.residual_factor();
+        predicted
+            .iter()
+            .zip(&self.measured)
+            .map(move |(p, y)| f * (p - y))
+    }
+
     fn residual_factor(&self) -> f64 {
         (self.weight / self.measured.len() as f64).sqrt() / self.scale
     }
@@ -198,8 +207,7 @@ impl<'a> Objective<'a> {
     fn stack(&self, predictions: &[Vec<f64>]) -> Vec<f64> {
         let mut r = Vec::with_capacity(self.len());
         for (b, p) in self.blocks.iter().zip(predictions) {
-            let f = b.residual_factor();
-            r.extend(p.iter().zip(&b.measured).map(|(p, y)| f * (p - y)));
+            r.extend(b.residuals(p));
         }
         r
     }

@@ -33,6 +33,9 @@ struct StageRow {
     optimizer: String,
     parameters: Vec<ParamRow>,
     correlation: Vec<Vec<f64>>,
+    /// MPM levels: the fit under the contact penalty κ and friction μ halved and doubled
+    /// (`fit::assumptions`).
+    contact_assumptions: Vec<ContactRow>,
     /// Parameter pairs the data do not identify separately (`fit::identifiability`).
     not_identified: Vec<String>,
     objective: f64,
@@ -45,6 +48,16 @@ struct StageRow {
     wall_time_s: f64,
     termination: String,
     converged: bool,
+}
+
+/// One change of the contact assumptions: ΔS/S at the fitted parameters, and per free
+/// parameter the linearized refit shift [SI] and that shift over its standard error.
+#[derive(Serialize)]
+struct ContactRow {
+    change: String,
+    objective_change_percent: f64,
+    shifts: Vec<f64>,
+    shifts_in_std_errors: Vec<f64>,
 }
 
 #[derive(Serialize)]
@@ -164,6 +177,21 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
                     })
                     .collect(),
                 correlation: s.correlation.clone(),
+                contact_assumptions: s
+                    .contact
+                    .iter()
+                    .map(|c| ContactRow {
+                        change: c.label.to_string(),
+                        objective_change_percent: 100.0 * c.cost_change,
+                        shifts: c.shifts.clone(),
+                        shifts_in_std_errors: c
+                            .shifts
+                            .iter()
+                            .zip(&s.std_errors)
+                            .map(|(d, se)| d / se)
+                            .collect(),
+                    })
+                    .collect(),
                 not_identified: identifiability::warnings(&s.free, &s.correlation),
                 objective: s.cost,
                 samples: s.samples,
@@ -311,6 +339,7 @@ pub fn table(set: &FitSet, result: &FitResult) -> String {
                 let _ = writeln!(out);
             }
         }
+        contact_table(&mut out, s);
     }
     let _ = writeln!(out, "\nExperiments (final parameters):");
     let w = r
@@ -366,6 +395,33 @@ pub fn table(set: &FitSet, result: &FitResult) -> String {
     let _ = writeln!(out, "\n{}", summary(&r));
     let _ = writeln!(out, "Total wall time {:.2} s", r.total_wall_time_s);
     out
+}
+
+/// The stage's shifts under changed contact assumptions, if it has any.
+fn contact_table(out: &mut String, s: &StageRow) {
+    if s.contact_assumptions.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        out,
+        "  contact assumptions (κ, μ of every MPM experiment; refit linearized at the optimum):"
+    );
+    let _ = write!(out, "  {:<8} {:>8}", "change", "ΔS/S");
+    for n in &s.free {
+        let _ = write!(out, " {:>22}", format!("Δ{n}"));
+    }
+    let _ = writeln!(out);
+    for c in &s.contact_assumptions {
+        let _ = write!(
+            out,
+            "  {:<8} {:>7.1}%",
+            c.change, c.objective_change_percent
+        );
+        for ((n, d), z) in s.free.iter().zip(&c.shifts).zip(&c.shifts_in_std_errors) {
+            let _ = write!(out, " {:>22}", format!("{} ({z:+.2} SE)", show(n, *d)));
+        }
+        let _ = writeln!(out);
+    }
 }
 
 /// The material of `file`: a fit report's `final_parameters` applied to `base`, or a

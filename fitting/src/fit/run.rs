@@ -6,6 +6,7 @@
 //! Cov(p) = s² (J_pᵀ J_p)⁻¹, s² = S/(n − P), standard error √Cov_kk, correlation
 //! Cov_kl/√(Cov_kk Cov_ll), with J_p = dr/dp the exact Jacobian at the optimum.
 
+use super::assumptions::{contact_shifts, AssumptionShift};
 use super::fit_set::FitSet;
 use super::lm::{levenberg_marquardt, LmOptions};
 use super::model::{with_values, Material};
@@ -15,6 +16,7 @@ use super::params::ParamSpace;
 use super::trace::{HistoryPoint, OptimResult};
 use anyhow::{bail, Result};
 use materials::material::Model;
+use nalgebra::DMatrix;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 
@@ -45,6 +47,8 @@ pub struct StageResult {
     pub values: Vec<f64>,
     pub std_errors: Vec<f64>,
     pub correlation: Vec<Vec<f64>>,
+    /// Linearized refit shifts under changed contact assumptions (MPM levels; else empty).
+    pub contact: Vec<AssumptionShift>,
     pub cost: f64,
     pub samples: usize,
     /// Every start's run; `best` indexes the one kept.
@@ -153,7 +157,9 @@ pub fn run_fit(
             .unwrap();
         let u = runs[best].u.clone();
         let values = space.to_bounded(&u);
-        let (std_errors, correlation) = statistics(&objective, &u)?;
+        let (r, jp) = residuals_and_jacobian_in_p(&objective, &u)?;
+        let (std_errors, correlation) = covariance(&r, &jp);
+        let contact = contact_shifts(&objective, &values, &r, &jp)?;
         let (evaluations, jacobians) = objective.counts();
         let names: Vec<String> = space.names().iter().map(|s| s.to_string()).collect();
         material = with_values(&material, &space.names(), &values);
@@ -163,6 +169,7 @@ pub fn run_fit(
             values,
             std_errors,
             correlation,
+            contact,
             cost: runs[best].cost,
             samples: objective.len(),
             best,
@@ -239,23 +246,35 @@ pub fn run_predict(set: &FitSet, material: Material) -> Result<FitResult> {
 
 /// Standard errors and correlation matrix at `u` from the exact Jacobian in p.
 pub fn statistics(objective: &Objective, u: &[f64]) -> Result<(Vec<f64>, Vec<Vec<f64>>)> {
-    let (r, ju) = objective.residuals_and_jacobian(u, JacobianKind::Exact)?;
-    let dpdu = objective.space.derivatives(u);
-    let p = dpdu.len();
-    let mut jp = ju;
-    for k in 0..p {
-        jp.column_mut(k).scale_mut(1.0 / dpdu[k]);
+    let (r, jp) = residuals_and_jacobian_in_p(objective, u)?;
+    Ok(covariance(&r, &jp))
+}
+
+/// Residuals r and their exact Jacobian dr/dp in the bounded parameters, at `u`.
+pub fn residuals_and_jacobian_in_p(
+    objective: &Objective,
+    u: &[f64],
+) -> Result<(Vec<f64>, DMatrix<f64>)> {
+    let (r, mut jp) = objective.residuals_and_jacobian(u, JacobianKind::Exact)?;
+    for (k, dpdu) in objective.space.derivatives(u).iter().enumerate() {
+        jp.column_mut(k).scale_mut(1.0 / dpdu);
     }
+    Ok((r, jp))
+}
+
+/// Standard errors and correlation matrix from residuals `r` and J_p = dr/dp.
+fn covariance(r: &[f64], jp: &DMatrix<f64>) -> (Vec<f64>, Vec<Vec<f64>>) {
+    let p = jp.ncols();
     let n = r.len();
     let s2 = r.iter().map(|x| x * x).sum::<f64>() / (n.saturating_sub(p).max(1)) as f64;
-    let jtj = jp.transpose() * &jp;
+    let jtj = jp.transpose() * jp;
     let Some(inv) = jtj.clone().try_inverse() else {
-        return Ok((vec![f64::INFINITY; p], vec![vec![f64::NAN; p]; p]));
+        return (vec![f64::INFINITY; p], vec![vec![f64::NAN; p]; p]);
     };
     let cov = inv * s2;
     let se: Vec<f64> = (0..p).map(|k| cov[(k, k)].max(0.0).sqrt()).collect();
     let corr = (0..p)
         .map(|i| (0..p).map(|j| cov[(i, j)] / (se[i] * se[j])).collect())
         .collect();
-    Ok((se, corr))
+    (se, corr)
 }

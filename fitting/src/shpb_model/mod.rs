@@ -118,6 +118,53 @@ impl ModelSettings {
     }
 }
 
+/// A change of the contact assumptions of the model: the penalty stiffness κ and the
+/// friction μ of both faces scaled.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactChange {
+    pub label: &'static str,
+    /// Factor on κ (κ ∝ ω_c², so `contact_factor` moves by its square root) [-].
+    pub penalty: f64,
+    /// Factor on μ [-].
+    pub friction: f64,
+}
+
+/// κ and μ each halved and doubled: how far a result moves under them is what the
+/// choice of the defaults (contact factor 1, μ = 0.1) is worth.
+pub const CONTACT_CHANGES: [ContactChange; 4] = [
+    ContactChange {
+        label: "κ / 2",
+        penalty: 0.5,
+        friction: 1.0,
+    },
+    ContactChange {
+        label: "κ × 2",
+        penalty: 2.0,
+        friction: 1.0,
+    },
+    ContactChange {
+        label: "μ / 2",
+        penalty: 1.0,
+        friction: 0.5,
+    },
+    ContactChange {
+        label: "μ × 2",
+        penalty: 1.0,
+        friction: 2.0,
+    },
+];
+
+impl ModelSettings {
+    /// These settings with the contact assumptions changed by `change`.
+    pub fn with_contact(&self, change: &ContactChange) -> ModelSettings {
+        ModelSettings {
+            contact_factor: self.contact_factor * change.penalty.sqrt(),
+            friction: self.friction * change.friction,
+            ..*self
+        }
+    }
+}
+
 /// One SHPB model, discretized once; `run` instantiates it with a material.
 #[derive(Clone)]
 pub struct ShpbModel {
@@ -205,6 +252,20 @@ impl ShpbModel {
             settings,
             signals,
             bars,
+        })
+    }
+
+    /// The same discretized model with the faces' κ and μ changed by `change`.
+    pub fn with_contact(&self, change: &ContactChange) -> anyhow::Result<ShpbModel> {
+        let mut solver = self.template.model().clone();
+        for rc in &mut solver.rigid {
+            rc.body.penalty *= change.penalty;
+            rc.body.friction *= change.friction;
+        }
+        Ok(ShpbModel {
+            template: Template::new(solver)?,
+            settings: self.settings.with_contact(change),
+            ..self.clone()
         })
     }
 

@@ -4,7 +4,7 @@
 //! time and size: the numbers a user reads to pick a resolution to fit with.
 
 use super::scene::ShpbScene;
-use super::ShpbRun;
+use super::{ShpbRun, CONTACT_CHANGES};
 use crate::shpb::signal::interpolate;
 use anyhow::Result;
 use materials::plasticity::ElastoPlastic;
@@ -90,7 +90,7 @@ pub struct Variant {
 }
 
 /// How much the face force moves when the penalty stiffness κ and the friction μ are each
-/// halved and doubled (κ ∝ ω_c², so the contact factor moves by √2).
+/// halved and doubled (`CONTACT_CHANGES`).
 pub fn contact_sensitivity(scene: &ShpbScene, material: &ElastoPlastic) -> Result<Vec<Variant>> {
     let run = |settings| -> Result<ShpbRun> {
         let with = ShpbScene {
@@ -111,23 +111,15 @@ pub fn contact_sensitivity(scene: &ShpbScene, material: &ElastoPlastic) -> Resul
             / times.len() as f64
     };
     let base_mean = mean(r);
-    let variants = [
-        ("κ / 2", 0.5f64.sqrt(), 1.0),
-        ("κ × 2", 2f64.sqrt(), 1.0),
-        ("μ / 2", 1.0, 0.5),
-        ("μ × 2", 1.0, 2.0),
-    ];
-    variants
+    CONTACT_CHANGES
         .iter()
-        .map(|&(label, contact, friction)| {
-            let mut s = base;
-            s.contact_factor *= contact;
-            s.friction *= friction;
+        .map(|change| {
+            let s = base.with_contact(change);
             let h = run(s)?.history;
             Ok(Variant {
                 label: format!(
-                    "{label} (contact factor {:.3}, μ = {:.3})",
-                    s.contact_factor, s.friction
+                    "{} (contact factor {:.3}, μ = {:.3})",
+                    change.label, s.contact_factor, s.friction
                 ),
                 mean_change: mean(&h) / base_mean - 1.0,
                 rms_change: relative_rms(
