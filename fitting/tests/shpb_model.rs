@@ -1,7 +1,7 @@
 //! The MPM model of an SHPB record (`fitting::shpb_model`) on the 945 test 01 record of
 //! the shared data: the measured-velocity drive reproduces the record's specimen length,
-//! the incident-pulse drive the record's force level; scene files with bad fields are
-//! refused with the field named.
+//! the incident-pulse drive the record's force level; a run cut short is the start of the
+//! whole run; scene and set files with bad fields are refused with the field named.
 
 mod common;
 
@@ -137,9 +137,79 @@ fn contact_changes_on_the_template_equal_a_rebuilt_model() {
             .force_transmitted_n
             .iter()
             .fold(0.0f64, |m, f| m.max(f.abs()));
-        assert_eq!(changed.time_s.len(), expected.time_s.len(), "{}", change.label);
-        for (a, b) in changed.force_transmitted_n.iter().zip(&expected.force_transmitted_n) {
-            assert!((a - b).abs() <= 1e-9 * peak, "{}: {a} vs {b} N", change.label);
+        assert_eq!(
+            changed.time_s.len(),
+            expected.time_s.len(),
+            "{}",
+            change.label
+        );
+        for (a, b) in changed
+            .force_transmitted_n
+            .iter()
+            .zip(&expected.force_transmitted_n)
+        {
+            assert!(
+                (a - b).abs() <= 1e-9 * peak,
+                "{}: {a} vs {b} N",
+                change.label
+            );
         }
     }
+}
+
+/// A set file's MPM fields: `drive` names a drive of the model and belongs to the MPM
+/// level; the error names the field (`{:#}` prints the set file and experiment).
+#[test]
+fn a_set_file_with_a_bad_drive_names_it() {
+    if scene(Drive::MeasuredVelocity).is_none() {
+        return;
+    }
+    let experiments = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/experiments");
+    let text = std::fs::read_to_string(experiments.join("fit_945_mpm.toml"))
+        .unwrap()
+        .replace(
+            "\"../materials/",
+            &format!("\"{}/../materials/", experiments.display()),
+        )
+        .replace(
+            "\"shpb_steel_945/",
+            &format!("\"{}/shpb_steel_945/", experiments.display()),
+        );
+    let first = "level = \"mpm-axisymmetric\"";
+    assert!(text.contains(first));
+    for (to, expect) in [
+        (
+            "level = \"mpm-axisymmetric\"\ndrive = \"pulse\"",
+            "field `drive`: \"pulse\", expected \"measured-velocity\" or \"incident-pulse\"",
+        ),
+        (
+            "level = \"single-point\"\ndrive = \"incident-pulse\"",
+            "belong to level = \"mpm-axisymmetric\"",
+        ),
+    ] {
+        let file = std::env::temp_dir().join(format!("mpw-drive-{}.toml", std::process::id()));
+        std::fs::write(&file, text.replacen(first, to, 1)).unwrap();
+        let result = fitting::fit::fit_set::FitSet::load(&file);
+        std::fs::remove_file(&file).unwrap();
+        let e = format!("{:#}", result.err().expect(to));
+        assert!(e.contains(expect) && e.contains("test_01"), "{to}: {e}");
+    }
+}
+
+/// A fit's run ends a window after its last sample: the run is explicit, so the shorter
+/// run's history must be the whole run's to the bit.
+#[test]
+fn a_run_cut_short_is_the_start_of_the_whole_run() {
+    let Some(s) = scene(Drive::IncidentPulse) else {
+        return;
+    };
+    let material = materials::load_elasto_plastic(&s.material_file).unwrap();
+    let model = s.model(&material).unwrap();
+    let whole = model.run(s.material(&material)).unwrap().history;
+    let end = 0.5 * model.end_s();
+    let cut = model.run_until(s.material(&material), end).unwrap().history;
+    let n = cut.time_s.len();
+    assert!(n < whole.time_s.len() && cut.time_s[n - 1] >= end - 1e-9);
+    assert_eq!(cut.force_incident_n[..], whole.force_incident_n[..n]);
+    assert_eq!(cut.force_transmitted_n[..], whole.force_transmitted_n[..n]);
 }

@@ -189,9 +189,10 @@ fn build_block(base: &Material, exp: &Experiment, entry: &ExperimentEntry) -> Re
         entry.layers.is_some(),
         entry.friction.is_some(),
         entry.shape_function.is_some(),
+        entry.drive.is_some(),
     ];
     if level == Level::SinglePoint && mpm_fields.contains(&true) {
-        bail!("fields `layers`, `friction` and `shape_function` belong to level = \"mpm-axisymmetric\"");
+        bail!("fields `layers`, `friction`, `shape_function` and `drive` belong to level = \"mpm-axisymmetric\"");
     }
     let max = entry.max_samples.unwrap_or(DEFAULT_MAX_SAMPLES);
     match (exp, level) {
@@ -266,8 +267,8 @@ fn tensile_block(
 }
 
 /// The MPM model of record `e` (processed into `analysis`) at its `samples` (indices of
-/// the analysis), with the entry's layers, friction and shape functions (uGIMP unless
-/// named: `mpm_shpb`).
+/// the analysis), with the entry's layers, friction, shape functions (CPDI unless named:
+/// `mpm_shpb`) and drive (the measured face velocity unless named).
 fn mpm_block_model(
     base: &Material,
     e: &ShpbExperiment,
@@ -276,7 +277,13 @@ fn mpm_block_model(
     samples: &[usize],
     forces: FaceForces,
 ) -> Result<MpmShpb> {
-    let mut settings = ModelSettings::new(entry.layers.unwrap_or(20), Drive::MeasuredVelocity);
+    let drive = match &entry.drive {
+        Some(name) => name
+            .parse()
+            .map_err(|e: String| anyhow!("field `drive`: {e}"))?,
+        None => Drive::MeasuredVelocity,
+    };
+    let mut settings = ModelSettings::new(entry.layers.unwrap_or(20), drive);
     settings.friction = entry.friction.unwrap_or(settings.friction);
     settings.shape_function = match &entry.shape_function {
         Some(name) => name

@@ -30,6 +30,9 @@
 //! shape_function = "cpdi"     # mpm-axisymmetric: "cpdi" (default) or any other kernel
 //!                             #   (`mpm_core::shape`; "linear" drifts under refinement,
 //!                             #   "ugimp" converges slowly, `fit::mpm_shpb`)
+//! drive = "measured-velocity" # mpm-axisymmetric: the incident face follows the measured
+//!                             #   v1 − v2 (default), or "incident-pulse": both faces on elastic
+//!                             #   bars, only ε_i drives, the model predicts ε_r and ε_t
 //! thermal = "isothermal"      # tensile: "isothermal" | "adiabatic" (default: adiabatic above 1 1/s)
 //! window = [15e-6, 115e-6]    # shpb (required): window [s] after the incident pulse start at the
 //!                             #   faces, or "plateau": the strain-rate plateau of `shpb::analyze`
@@ -107,6 +110,7 @@ pub struct ExperimentEntry {
     pub layers: Option<usize>,
     pub friction: Option<f64>,
     pub shape_function: Option<String>,
+    pub drive: Option<String>,
 }
 
 /// An SHPB fit window: explicit times [s] or the strain-rate plateau (`"plateau"`).

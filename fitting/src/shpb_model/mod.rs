@@ -59,6 +59,21 @@ pub enum Drive {
     IncidentPulse,
 }
 
+impl std::str::FromStr for Drive {
+    type Err = String;
+
+    /// The drive's name in scene and set files.
+    fn from_str(name: &str) -> Result<Drive, String> {
+        match name {
+            "measured-velocity" => Ok(Drive::MeasuredVelocity),
+            "incident-pulse" => Ok(Drive::IncidentPulse),
+            other => Err(format!(
+                "\"{other}\", expected \"measured-velocity\" or \"incident-pulse\""
+            )),
+        }
+    }
+}
+
 /// Bars: axial stiffness E_b A_b [N] and wave speed c0 [m/s] (both bars alike).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bars {

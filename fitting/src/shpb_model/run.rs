@@ -40,6 +40,13 @@ pub struct ShpbRun {
     pub wall_s: f64,
 }
 
+/// `run` on one thread, inside its own pool: a model of a few thousand points runs the
+/// parallel loops of a step inline instead of waking threads (issue 15).
+fn one_thread(run: impl FnOnce() -> anyhow::Result<ShpbRun> + Send) -> anyhow::Result<ShpbRun> {
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+    pool.install(run)
+}
+
 /// Compressive force on a face and its velocity into the specimen.
 fn face_state(rc: &RigidContact<2>, drive_velocity: f64) -> (f64, f64) {
     let axis = rc.body.planes[0].normal;
@@ -56,7 +63,13 @@ fn face_state(rc: &RigidContact<2>, drive_velocity: f64) -> (f64, f64) {
 impl ShpbModel {
     /// Run the model with `material` over the signals' time span.
     pub fn run(&self, material: Arc<dyn Material>) -> anyhow::Result<ShpbRun> {
-        self.run_observed(material, &mut [])
+        self.run_until(material, self.end_s())
+    }
+
+    /// Run the model with `material` from t = 0 to `end` [s] (at most the signals' end):
+    /// the run is explicit, so its history up to `end` is that of the whole run.
+    pub fn run_until(&self, material: Arc<dyn Material>, end: f64) -> anyhow::Result<ShpbRun> {
+        one_thread(|| self.run_inline(material, end.min(self.end_s()), &mut []))
     }
 
     /// `run`, also reporting every step (and the initial state) to `observers` (VTK
@@ -66,15 +79,13 @@ impl ShpbModel {
         material: Arc<dyn Material>,
         observers: &mut [&mut (dyn Observer<2> + Send)],
     ) -> anyhow::Result<ShpbRun> {
-        // a few thousand points: one thread, inside its own pool, so that the parallel
-        // loops of a step run inline instead of waking threads (issue 15)
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
-        pool.install(|| self.run_inline(material, observers))
+        one_thread(|| self.run_inline(material, self.end_s(), observers))
     }
 
     fn run_inline(
         &self,
         material: Arc<dyn Material>,
+        end: f64,
         observers: &mut [&mut (dyn Observer<2> + Send)],
     ) -> anyhow::Result<ShpbRun> {
         let start = Instant::now();
@@ -86,7 +97,7 @@ impl ShpbModel {
             observers.iter_mut().try_for_each(|o| o.observe(s))
         };
         each(&solver)?;
-        solver.run_until(self.end_s(), &mut [&mut each])?;
+        solver.run_until(end, &mut [&mut each])?;
         Ok(ShpbRun {
             history: h,
             steps: solver.step,

@@ -75,14 +75,7 @@ impl ShpbScene {
                 format!("\"{}\": the levels built so far are \"mpm-axisymmetric\" (3D quarter and full 3D are not built yet)", f.level)
             ));
         }
-        let drive = match f.drive.as_str() {
-            "incident-pulse" => Drive::IncidentPulse,
-            "measured-velocity" => Drive::MeasuredVelocity,
-            other => bail!(field(
-                "drive",
-                format!("\"{other}\", expected \"incident-pulse\" or \"measured-velocity\"")
-            )),
-        };
+        let drive: Drive = f.drive.parse().map_err(|e| field("drive", e))?;
         let mut settings = ModelSettings::new(f.layers, drive);
         settings.friction = f.friction.unwrap_or(settings.friction);
         settings.contact_factor = f.contact_factor.unwrap_or(settings.contact_factor);
