@@ -66,7 +66,7 @@ fn a_scene_with_a_bad_field_names_it() {
         ),
         (
             "level = \"mpm-axisymmetric\"",
-            "level = \"mpm-3d\"",
+            "level = \"mpm-2d\"",
             "field `level`",
         ),
         ("friction = 0.1", "friction = 1.5", "field `friction`"),
@@ -184,7 +184,7 @@ fn a_set_file_with_a_bad_drive_names_it() {
         ),
         (
             "level = \"single-point\"\ndrive = \"incident-pulse\"",
-            "belong to level = \"mpm-axisymmetric\"",
+            "belong to the MPM levels",
         ),
     ] {
         let file = std::env::temp_dir().join(format!("mpw-drive-{}.toml", std::process::id()));
@@ -212,4 +212,22 @@ fn a_run_cut_short_is_the_start_of_the_whole_run() {
     assert!(n < whole.time_s.len() && cut.time_s[n - 1] >= end - 1e-9);
     assert_eq!(cut.force_incident_n[..], whole.force_incident_n[..n]);
     assert_eq!(cut.force_transmitted_n[..], whole.force_transmitted_n[..n]);
+}
+
+/// The shipped MPM-level set files load: six records each, compared on F2.
+#[test]
+fn the_shipped_mpm_sets_load() {
+    if scene(Drive::MeasuredVelocity).is_none() {
+        return;
+    }
+    let experiments = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/experiments");
+    for file in ["fit_945_mpm.toml", "fit_945_mpm_pulse.toml"] {
+        let set = fitting::fit::fit_set::FitSet::load(&experiments.join(file))
+            .unwrap_or_else(|e| panic!("{file}: {e:#}"));
+        assert_eq!(set.blocks.len(), 6, "{file}");
+        for block in &set.blocks {
+            assert_eq!(block.channels, ["F2"], "{file}: {}", block.name);
+            assert_eq!(block.model.level(), "axisymmetric MPM SHPB specimen");
+        }
+    }
 }

@@ -108,12 +108,13 @@ pub fn run(scene_file: &Path, params: Option<&Path>, out: &Path, sensitivity: bo
     let (e, s) = (&scene.experiment, &scene.settings);
     println!("SHPB record: {} ({})", e.name, e.data_file.display());
     println!(
-        "specimen: d = {:.3} mm, L = {:.3} mm, {} K; {} points ({} along the length), mpm-axisymmetric",
+        "specimen: d = {:.3} mm, L = {:.3} mm, {} K; {} points ({} along the length), {}",
         e.specimen.diameter_m * 1e3,
         e.specimen.length_m * 1e3,
         e.temperature_k,
         model.particles(),
-        s.layers
+        s.layers,
+        s.level.name()
     );
     println!(
         "drive: {}; faces: μ = {}, contact frequency {} c/s; {:.1} µs of record",
@@ -129,7 +130,11 @@ pub fn run(scene_file: &Path, params: Option<&Path>, out: &Path, sensitivity: bo
     );
     std::fs::create_dir_all(out).with_context(|| format!("{}: cannot create", out.display()))?;
     let mut snapshots = SnapshotWriter::new(out, model.end_s(), SNAPSHOTS);
-    let run = model.run_observed(scene.material(&material), &mut [&mut snapshots])?;
+    let run = model.run_observed(
+        scene.material(&material),
+        model.end_s(),
+        &mut [&mut snapshots],
+    )?;
     println!(
         "{} steps of {:.3e} s in {:.2} s ({:.2} M particle-steps/s)",
         run.steps,

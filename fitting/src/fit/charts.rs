@@ -31,6 +31,9 @@ pub fn fit_charts(dir: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
             &b.x_label,
             format!("residual {}", b.y_label),
         );
+        // one model line where the channels' predictions coincide (a uniform specimen has
+        // F1 = F2), one per channel where they differ (an MPM level)
+        let differ = (1..b.channels.len()).any(|c| p[c * per..(c + 1) * per] != p[..per]);
         for (c, ch) in b.channels.iter().enumerate() {
             let range = c * per..(c + 1) * per;
             let x = &b.x[range.clone()];
@@ -48,14 +51,15 @@ pub fn fit_charts(dir: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
             ));
             let r: Vec<f64> = range.clone().map(|k| p[k] - b.measured[k]).collect();
             res = res.with(Series::scaled(residual, x, &r, 1.0, b.y_chart_scale));
+            if c == 0 || differ {
+                let label = if differ {
+                    format!("{ch} model")
+                } else {
+                    "model".to_string()
+                };
+                fit = fit.with(Series::scaled(label, x, &p[range], 1.0, b.y_chart_scale));
+            }
         }
-        fit = fit.with(Series::scaled(
-            "model",
-            &b.x[..per],
-            &p[..per],
-            1.0,
-            b.y_chart_scale,
-        ));
         let stem = sanitize(&b.name);
         fit.write_png(&dir.join(format!("{stem}_fit.png")))?;
         res.write_png(&dir.join(format!("{stem}_residual.png")))?;

@@ -13,7 +13,7 @@ use super::single_point::SinglePoint;
 use super::tensile::{Tensile, Thermal};
 use crate::experiment::{load_experiments, Experiment, ShpbExperiment, TensileExperiment};
 use crate::shpb::{analyze, ShpbAnalysis};
-use crate::shpb_model::{record, Drive, ModelSettings};
+use crate::shpb_model::{record, Drive, ModelLevel, ModelSettings};
 use anyhow::{anyhow, bail, Context, Result};
 use materials::material::Model;
 use materials::AnyModel;
@@ -174,15 +174,15 @@ fn thin(range: std::ops::Range<usize>, max: usize) -> Vec<usize> {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Level {
     SinglePoint,
-    MpmAxisymmetric,
+    Mpm(ModelLevel),
 }
 
 fn build_block(base: &Material, exp: &Experiment, entry: &ExperimentEntry) -> Result<Block> {
     let level = match entry.level.as_str() {
         "single-point" => Level::SinglePoint,
-        "mpm-axisymmetric" => Level::MpmAxisymmetric,
-        other => bail!(
-            "field `level`: \"{other}\", expected \"single-point\" or \"mpm-axisymmetric\" (3D levels are not built yet)"
+        mpm => Level::Mpm(
+            mpm.parse()
+                .map_err(|e: String| anyhow!("field `level`: {e}, or \"single-point\""))?,
         ),
     };
     let mpm_fields = [
@@ -192,12 +192,12 @@ fn build_block(base: &Material, exp: &Experiment, entry: &ExperimentEntry) -> Re
         entry.drive.is_some(),
     ];
     if level == Level::SinglePoint && mpm_fields.contains(&true) {
-        bail!("fields `layers`, `friction`, `shape_function` and `drive` belong to level = \"mpm-axisymmetric\"");
+        bail!("fields `layers`, `friction`, `shape_function` and `drive` belong to the MPM levels (level = \"mpm-axisymmetric\", ...)");
     }
     let max = entry.max_samples.unwrap_or(DEFAULT_MAX_SAMPLES);
     match (exp, level) {
         (Experiment::Tensile(e), Level::SinglePoint) => tensile_block(base, e, entry, max),
-        (Experiment::Tensile(_), Level::MpmAxisymmetric) => {
+        (Experiment::Tensile(_), Level::Mpm(_)) => {
             bail!("field `level`: the MPM level models the SHPB test only; a tensile test is \"single-point\"")
         }
         (Experiment::Shpb(e), level) => shpb_block(base, e, entry, max, level),
@@ -266,8 +266,8 @@ fn tensile_block(
     Ok(block)
 }
 
-/// The MPM model of record `e` (processed into `analysis`) at its `samples` (indices of
-/// the analysis), with the entry's layers, friction, shape functions (CPDI unless named:
+/// The MPM model of record `e` (processed into `analysis`) at `level` and its `samples`
+/// (indices of the analysis), with the entry's layers, friction, shape functions (CPDI unless named:
 /// `mpm_shpb`) and drive (the measured face velocity unless named).
 fn mpm_block_model(
     base: &Material,
@@ -276,6 +276,7 @@ fn mpm_block_model(
     entry: &ExperimentEntry,
     samples: &[usize],
     forces: FaceForces,
+    level: ModelLevel,
 ) -> Result<MpmShpb> {
     let drive = match &entry.drive {
         Some(name) => name
@@ -284,6 +285,7 @@ fn mpm_block_model(
         None => Drive::MeasuredVelocity,
     };
     let mut settings = ModelSettings::new(entry.layers.unwrap_or(20), drive);
+    settings.level = level;
     settings.friction = entry.friction.unwrap_or(settings.friction);
     settings.shape_function = match &entry.shape_function {
         Some(name) => name
@@ -386,8 +388,8 @@ fn shpb_block(
             e.temperature_k,
             channel.count(),
         )?)),
-        Level::MpmAxisymmetric => Box::new(mpm_block_model(
-            base, e, &analysis, entry, &samples, channel,
+        Level::Mpm(level) => Box::new(mpm_block_model(
+            base, e, &analysis, entry, &samples, channel, level,
         )?),
     };
     let first = if channel == FaceForces::F2 {

@@ -2,7 +2,10 @@
 //! 11, `level = "mpm-axisymmetric"` in a set file): the specimen between the two faces
 //! with Coulomb friction, barrelling and radial inertia (`crate::shpb_model`), driven as
 //! the single-point level is, by the measured relative face velocity v1 − v2, so the two
-//! levels differ only in what the MPM model adds. The prediction is the model's contact
+//! levels differ only in what the MPM model adds; or (`drive = "incident-pulse"`) by the
+//! incident pulse alone, both faces on elastic bars, so that F1 − F1,meas =
+//! E_b A_b (ε_r − ε_r,meas) and F2 − F2,meas = E_b A_b (ε_t − ε_t,meas) compare the
+//! predicted gauge signals with the measured ones. The prediction is the model's contact
 //! force on the incident face (F1) and on the transmitter face (F2) at the experiment's
 //! samples [N, compression positive], stacked as the single-point level stacks them.
 //! Each sample is the model force's mean over `GAUGE_WINDOW` around it: the bars carry
@@ -117,7 +120,7 @@ impl MpmShpb {
 
 impl ExperimentModel for MpmShpb {
     fn level(&self) -> &'static str {
-        "axisymmetric MPM SHPB specimen"
+        self.model.settings().level.description()
     }
 
     fn len(&self) -> usize {

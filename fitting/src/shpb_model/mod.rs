@@ -1,8 +1,9 @@
 //! The MPM model of the SHPB test (thesis chapter 11, issue 11): the specimen as material
 //! points between two rigid faces, s_i on the incident side and s_t on the transmitter
-//! side, with penalty contact and Coulomb friction μ (algorithm 13). Level: axisymmetric,
-//! r across and z along the bars, the transmitter face below the specimen (s_t at the
-//! lowest points, axis +z into the specimen), the incident face above (axis −z).
+//! side, with penalty contact and Coulomb friction μ (algorithm 13). Levels (`geometry`):
+//! axisymmetric (r, z), 3D quarter and full 3D (x, y, z), z along the bars in each, the
+//! transmitter face below the specimen (s_t at the lowest points, axis +z into the
+//! specimen), the incident face above (axis −z).
 //!
 //! Two drives (`Drive`):
 //! - `MeasuredVelocity`, as in the thesis: s_i follows the measured relative face velocity
@@ -36,20 +37,22 @@
 //! and the face force dips for ≈ 0.5 µs (the cell-crossing error; GIMP/CPDI, issue 10).
 //! Units: SI.
 
+pub mod geometry;
 pub mod record;
 mod run;
 pub mod scene;
 pub mod study;
 pub mod verify;
 
-pub use run::{FaceHistory, ShpbRun};
+pub use run::{AnyObserver, FaceHistory, ShpbRun};
+
+pub use geometry::ModelLevel;
 
 use materials::signal::TimeSignal;
 use materials::Material;
-use mpm_core::discretize::{fill, Shape};
 use mpm_core::shape::ShapeFunction;
-use mpm_core::{BarEnd, Kinematics, RigidBody, Settings, Solver, Template, VelocityBc};
-use nalgebra::Vector2;
+use mpm_core::{BarEnd, RigidBody, Settings, Solver, Template};
+use nalgebra::SVector;
 use std::sync::Arc;
 
 /// How the faces move.
@@ -116,6 +119,8 @@ pub struct ModelSettings {
     /// Safety factor on the CFL estimate [-].
     pub safety: f64,
     pub drive: Drive,
+    /// Axisymmetric, 3D quarter or full 3D (`geometry`).
+    pub level: ModelLevel,
     /// Shape functions of the grid (linear, or uGIMP with the points' lattice domains).
     pub shape_function: ShapeFunction,
 }
@@ -128,6 +133,7 @@ impl ModelSettings {
             contact_factor: 1.0,
             safety: 0.3,
             drive,
+            level: ModelLevel::Axisymmetric,
             shape_function: ShapeFunction::Linear,
         }
     }
@@ -183,10 +189,19 @@ impl ModelSettings {
 /// One SHPB model, discretized once; `run` instantiates it with a material.
 #[derive(Clone)]
 pub struct ShpbModel {
-    template: Template<2>,
+    template: Discretized,
     settings: ModelSettings,
     signals: FaceSignals,
     bars: Bars,
+    /// Copies of the model that make the specimen (`geometry::Specimen::copies`) [-].
+    copies: f64,
+}
+
+/// The template of a 2D (axisymmetric) or 3D level.
+#[derive(Clone)]
+enum Discretized {
+    Axisymmetric(Template<2>),
+    Solid(Template<3>),
 }
 
 /// Name of the specimen body, for `Template::instantiate`.
@@ -195,9 +210,15 @@ pub const SPECIMEN: &str = "specimen";
 const TRANSMITTER: usize = 0;
 const INCIDENT: usize = 1;
 
+/// Unit vector along the bars (the last coordinate).
+fn bar_axis<const D: usize>() -> SVector<f64, D> {
+    SVector::from_fn(|i, _| if i == D - 1 { 1.0 } else { 0.0 })
+}
+
 impl ShpbModel {
-    /// Discretize `cylinder` with `settings.layers` points along its length (two per cell)
-    /// and place the faces; `material` only fixes the wave speed for the contact frequency.
+    /// Discretize `cylinder` at `settings.level` with `settings.layers` points along its
+    /// length (two per cell) and place the faces; `material` only fixes the wave speed for
+    /// the contact frequency.
     pub fn new(
         cylinder: Cylinder,
         bars: Bars,
@@ -210,87 +231,115 @@ impl ShpbModel {
             "layers = {}: at least 2 points along the specimen",
             settings.layers
         );
-        let s = cylinder.length / settings.layers as f64;
-        let mut solver = Solver::new(Settings::<2>::new(Kinematics::Axisymmetric, 2.0 * s));
-        solver.settings.safety = settings.safety;
-        solver.settings.shape_function = settings.shape_function;
-        let points = fill(
-            &Shape::Box {
-                min: Vector2::zeros(),
-                max: Vector2::new(0.5 * cylinder.diameter, cylinder.length),
-            },
-            Vector2::repeat(s),
-            Kinematics::Axisymmetric,
-        );
-        let (z_min, z_max) = (0.0, cylinder.length);
-        let c = (material.p_wave_modulus() / material.density()).sqrt();
-        let body = solver.add_body(SPECIMEN, material, &points, Vector2::zeros());
-        solver.set_half_size(body, Vector2::repeat(0.5 * s));
-        solver.velocity_bcs.push(VelocityBc::axis());
-        let omega = settings.contact_factor * c / s;
-        let face = |name: &str, z: f64, axis: Vector2<f64>| {
-            let mut body = RigidBody::half_space(
-                name,
-                Vector2::new(0.0, z),
-                axis,
-                omega * omega,
-                settings.friction,
-            );
-            body.penalty_per_mass = true;
-            body
+        let (template, copies) = match settings.level {
+            ModelLevel::Axisymmetric => {
+                let (t, copies) = discretize::<2>(&cylinder, &bars, &signals, &settings, material)?;
+                (Discretized::Axisymmetric(t), copies)
+            }
+            ModelLevel::Quarter3d | ModelLevel::Full3d => {
+                let (t, copies) = discretize::<3>(&cylinder, &bars, &signals, &settings, material)?;
+                (Discretized::Solid(t), copies)
+            }
         };
-        let mut transmitter = face("transmitter", z_min, Vector2::y());
-        let mut incident = face("incident", z_max, -Vector2::y());
-        match settings.drive {
-            Drive::MeasuredVelocity => {
-                let v = signals
-                    .relative_velocity_m_per_s
-                    .iter()
-                    .map(|v| Vector2::new(0.0, -v))
-                    .collect();
-                let velocity = TimeSignal::new(signals.time_s.clone(), v)?;
-                incident.motion.translation = Some(velocity.integrated());
-            }
-            Drive::IncidentPulse => {
-                let pulse = TimeSignal::new(signals.time_s.clone(), signals.incident.clone())?;
-                let bar = |axis, incoming| {
-                    BarEnd::new(axis, bars.axial_stiffness, bars.wave_speed, incoming)
-                };
-                incident.motion.bar = Some(bar(-Vector2::y(), Some(pulse)));
-                transmitter.motion.bar = Some(bar(Vector2::y(), None));
-            }
-        }
-        solver.add_rigid_body(transmitter);
-        solver.add_rigid_body(incident);
         Ok(ShpbModel {
-            template: Template::new(solver)?,
+            template,
             settings,
             signals,
             bars,
+            copies,
         })
     }
 
     /// The same discretized model with the faces' κ and μ changed by `change`.
     pub fn with_contact(&self, change: &ContactChange) -> anyhow::Result<ShpbModel> {
-        let mut solver = self.template.model().clone();
-        for rc in &mut solver.rigid {
-            rc.body.penalty *= change.penalty;
-            rc.body.friction *= change.friction;
+        fn changed<const D: usize>(
+            t: &Template<D>,
+            change: &ContactChange,
+        ) -> anyhow::Result<Template<D>> {
+            let mut solver = t.model().clone();
+            for rc in &mut solver.rigid {
+                rc.body.penalty *= change.penalty;
+                rc.body.friction *= change.friction;
+            }
+            Ok(Template::new(solver)?)
         }
+        let template = match &self.template {
+            Discretized::Axisymmetric(t) => Discretized::Axisymmetric(changed(t, change)?),
+            Discretized::Solid(t) => Discretized::Solid(changed(t, change)?),
+        };
         Ok(ShpbModel {
-            template: Template::new(solver)?,
+            template,
             settings: self.settings.with_contact(change),
             ..self.clone()
         })
     }
 
-    /// Number of material points.
+    pub fn settings(&self) -> &ModelSettings {
+        &self.settings
+    }
+
+    /// Number of material points (of the model, not of its copies).
     pub fn particles(&self) -> usize {
-        self.template.model().particles.len()
+        match &self.template {
+            Discretized::Axisymmetric(t) => t.model().particles.len(),
+            Discretized::Solid(t) => t.model().particles.len(),
+        }
     }
 
     /// End of the signals [s].
     pub fn end_s(&self) -> f64 {
         self.signals.time_s.last().copied().unwrap_or(0.0)
     }
+}
+
+/// The specimen at `settings.level` between its two faces, as a template, and the number
+/// of copies of it that make the specimen.
+fn discretize<const D: usize>(
+    cylinder: &Cylinder,
+    bars: &Bars,
+    signals: &FaceSignals,
+    settings: &ModelSettings,
+    material: Arc<dyn Material>,
+) -> anyhow::Result<(Template<D>, f64)> {
+    let specimen = geometry::specimen::<D>(cylinder, settings.layers, settings.level);
+    let mut solver = Solver::new(Settings::<D>::new(specimen.kinematics, specimen.cell));
+    solver.settings.safety = settings.safety;
+    solver.settings.shape_function = settings.shape_function;
+    let c = (material.p_wave_modulus() / material.density()).sqrt();
+    let body = solver.add_body(SPECIMEN, material, &specimen.points, SVector::zeros());
+    solver.set_half_size(body, specimen.spacing * 0.5);
+    solver.velocity_bcs.extend(specimen.conditions);
+    let s = specimen.spacing[0];
+    let omega = settings.contact_factor * c / s;
+    let axis = bar_axis::<D>();
+    let face = |name: &str, z: f64, normal: SVector<f64, D>| {
+        let mut body =
+            RigidBody::half_space(name, axis * z, normal, omega * omega, settings.friction);
+        body.penalty_per_mass = true;
+        body
+    };
+    let mut transmitter = face("transmitter", 0.0, axis);
+    let mut incident = face("incident", cylinder.length, -axis);
+    match settings.drive {
+        Drive::MeasuredVelocity => {
+            let v = signals
+                .relative_velocity_m_per_s
+                .iter()
+                .map(|v| axis * -v)
+                .collect();
+            let velocity = TimeSignal::new(signals.time_s.clone(), v)?;
+            incident.motion.translation = Some(velocity.integrated());
+        }
+        Drive::IncidentPulse => {
+            // each copy of the model sits on its share of the bar
+            let stiffness = bars.axial_stiffness / specimen.copies;
+            let pulse = TimeSignal::new(signals.time_s.clone(), signals.incident.clone())?;
+            let bar = |axis, incoming| BarEnd::new(axis, stiffness, bars.wave_speed, incoming);
+            incident.motion.bar = Some(bar(-axis, Some(pulse)));
+            transmitter.motion.bar = Some(bar(axis, None));
+        }
+    }
+    solver.add_rigid_body(transmitter);
+    solver.add_rigid_body(incident);
+    Ok((Template::new(solver)?, specimen.copies))
 }

@@ -1,12 +1,12 @@
 //! One run of an SHPB model with one material: the histories at both faces, recorded
 //! every step in memory (no files).
 
-use super::{Drive, ShpbModel, INCIDENT, SPECIMEN, TRANSMITTER};
+use super::{Discretized, Drive, ShpbModel, INCIDENT, SPECIMEN, TRANSMITTER};
 use crate::shpb::signal::interpolate;
 use materials::Material;
 use mpm_core::observer::Observer;
 use mpm_core::solver::RigidContact;
-use mpm_core::Solver;
+use mpm_core::{Solver, Template};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -47,8 +47,14 @@ fn one_thread(run: impl FnOnce() -> anyhow::Result<ShpbRun> + Send) -> anyhow::R
     pool.install(run)
 }
 
-/// Compressive force on a face and its velocity into the specimen.
-fn face_state(rc: &RigidContact<2>, drive_velocity: f64) -> (f64, f64) {
+/// An observer of the solver at every level (2D and 3D), e.g. `SnapshotWriter`.
+pub trait AnyObserver: Observer<2> + Observer<3> + Send {}
+
+impl<T: Observer<2> + Observer<3> + Send> AnyObserver for T {}
+
+/// Compressive force on a face (of the model, not of its copies) and its velocity into
+/// the specimen.
+fn face_state<const D: usize>(rc: &RigidContact<D>, drive_velocity: f64) -> (f64, f64) {
     let axis = rc.body.planes[0].normal;
     let force = -rc.contact.force.dot(&axis);
     let velocity = rc
@@ -69,32 +75,46 @@ impl ShpbModel {
     /// Run the model with `material` from t = 0 to `end` [s] (at most the signals' end):
     /// the run is explicit, so its history up to `end` is that of the whole run.
     pub fn run_until(&self, material: Arc<dyn Material>, end: f64) -> anyhow::Result<ShpbRun> {
-        one_thread(|| self.run_inline(material, end.min(self.end_s()), &mut []))
+        self.run_observed(material, end, &mut [])
     }
 
-    /// `run`, also reporting every step (and the initial state) to `observers` (VTK
+    /// `run_until`, also reporting every step (and the initial state) to `observers` (VTK
     /// snapshots, progress).
     pub fn run_observed(
         &self,
         material: Arc<dyn Material>,
-        observers: &mut [&mut (dyn Observer<2> + Send)],
+        end: f64,
+        observers: &mut [&mut dyn AnyObserver],
     ) -> anyhow::Result<ShpbRun> {
-        one_thread(|| self.run_inline(material, self.end_s(), observers))
+        let end = end.min(self.end_s());
+        one_thread(|| match &self.template {
+            Discretized::Axisymmetric(t) => self.run_inline(t, material, end, &mut |s| {
+                observers
+                    .iter_mut()
+                    .try_for_each(|o| Observer::<2>::observe(&mut **o, s))
+            }),
+            Discretized::Solid(t) => self.run_inline(t, material, end, &mut |s| {
+                observers
+                    .iter_mut()
+                    .try_for_each(|o| Observer::<3>::observe(&mut **o, s))
+            }),
+        })
     }
 
-    fn run_inline(
+    fn run_inline<const D: usize>(
         &self,
+        template: &Template<D>,
         material: Arc<dyn Material>,
         end: f64,
-        observers: &mut [&mut (dyn Observer<2> + Send)],
+        observe: &mut dyn FnMut(&Solver<D>) -> std::io::Result<()>,
     ) -> anyhow::Result<ShpbRun> {
         let start = Instant::now();
-        let mut solver = self.template.instantiate(&[(SPECIMEN, material)])?;
+        let mut solver = template.instantiate(&[(SPECIMEN, material)])?;
         solver.initialize();
         let mut h = FaceHistory::default();
-        let mut each = |s: &Solver<2>| -> std::io::Result<()> {
+        let mut each = |s: &Solver<D>| -> std::io::Result<()> {
             self.record(s, &mut h);
-            observers.iter_mut().try_for_each(|o| o.observe(s))
+            observe(s)
         };
         each(&solver)?;
         solver.run_until(end, &mut [&mut each])?;
@@ -107,7 +127,7 @@ impl ShpbModel {
         })
     }
 
-    fn record(&self, s: &Solver<2>, h: &mut FaceHistory) {
+    fn record<const D: usize>(&self, s: &Solver<D>, h: &mut FaceHistory) {
         let t = s.time;
         let at = |values: &[f64]| interpolate(&self.signals.time_s, values, t);
         let drive = match self.settings.drive {
@@ -116,11 +136,12 @@ impl ShpbModel {
         };
         let (f_i, v_i) = face_state(&s.rigid[INCIDENT], drive);
         let (f_t, v_t) = face_state(&s.rigid[TRANSMITTER], 0.0);
+        let (f_i, f_t) = (f_i * self.copies, f_t * self.copies);
         let ea = self.bars.axial_stiffness;
         // axial position of face k: its plane in the body frame, moved by its motion
         let z = |k: usize| {
             let body = &s.rigid[k].body;
-            body.planes[0].point[1] + body.motion.pose(t).translation[1]
+            body.planes[0].point[D - 1] + body.motion.pose(t).translation[D - 1]
         };
         h.time_s.push(t);
         h.force_incident_n.push(f_i);

@@ -5,7 +5,7 @@
 //! kind = "shpb"
 //! experiment = "../experiments/shpb_steel_945/test_01.toml"  # its processed face signals drive the model
 //! material = "../materials/steel_945.toml"                    # Johnson-Cook file or fit report (with --params)
-//! level = "mpm-axisymmetric"
+//! level = "mpm-axisymmetric"      # or "mpm-3d-quarter" (symmetry planes x = 0, y = 0), "mpm-3d"
 //! drive = "incident-pulse"        # or "measured-velocity" (the thesis's)
 //! layers = 20                     # points along the specimen (thesis B1-B3: 20, 40, 60)
 //! friction = 0.1                  # Coulomb μ at both faces
@@ -69,14 +69,9 @@ impl ShpbScene {
         if f.kind != "shpb" {
             bail!(field("kind", format!("\"{}\", expected \"shpb\"", f.kind)));
         }
-        if f.level != "mpm-axisymmetric" {
-            bail!(field(
-                "level",
-                format!("\"{}\": the levels built so far are \"mpm-axisymmetric\" (3D quarter and full 3D are not built yet)", f.level)
-            ));
-        }
         let drive: Drive = f.drive.parse().map_err(|e| field("drive", e))?;
         let mut settings = ModelSettings::new(f.layers, drive);
+        settings.level = f.level.parse().map_err(|e| field("level", e))?;
         settings.friction = f.friction.unwrap_or(settings.friction);
         settings.contact_factor = f.contact_factor.unwrap_or(settings.contact_factor);
         settings.safety = f.safety.unwrap_or(settings.safety);
