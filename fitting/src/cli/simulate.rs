@@ -23,10 +23,12 @@ pub struct Args {
     /// file instead of the scene's material.
     #[arg(long)]
     pub params: Option<PathBuf>,
-    /// SHPB scenes: run these point counts along the specimen (e.g. 10,20,40,80) instead
-    /// of the scene's, and report each against the finest (accuracy against cost).
+    /// SHPB scenes: run these point counts along the specimen instead of the scene's, at
+    /// the scene's level (10,20,40,80) or at a named one (mpm-axisymmetric:20,
+    /// mpm-3d-quarter:40, mpm-3d:20), and report each against the last (accuracy against
+    /// cost).
     #[arg(long, value_delimiter = ',')]
-    pub refine: Vec<usize>,
+    pub refine: Vec<String>,
     /// SHPB scenes: also run with the penalty stiffness and the friction each halved and
     /// doubled, and report how far the transmitter-face force moves.
     #[arg(long)]

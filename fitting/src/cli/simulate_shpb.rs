@@ -8,8 +8,8 @@ use crate::chart::{LineChart, Series};
 use crate::fit::report::read_parameters;
 use crate::shpb::signal::interpolate;
 use crate::shpb_model::scene::ShpbScene;
-use crate::shpb_model::study::{contact_sensitivity, refinement, relative_rms, Level};
-use crate::shpb_model::{Drive, ShpbRun};
+use crate::shpb_model::study::{contact_sensitivity, refinement, relative_rms, Resolution};
+use crate::shpb_model::{Discretization, Drive, ModelLevel, ShpbRun};
 use anyhow::{Context, Result};
 use materials::plasticity::ElastoPlastic;
 use mpm_core::output::SnapshotWriter;
@@ -30,76 +30,105 @@ fn load(scene_file: &Path, params: Option<&Path>) -> Result<(ShpbScene, ElastoPl
     Ok((scene, material))
 }
 
-/// `--refine`: the scene at each point count, each against the finest; `refinement.csv`
-/// and the chart `accuracy_vs_cost.png`.
-pub fn refine(
-    scene_file: &Path,
-    params: Option<&Path>,
-    layers: &[usize],
-    out: &Path,
-) -> Result<()> {
+/// `--refine`: the scene at each level and point count of `runs`, each against the
+/// last; `refinement.csv` and the chart `accuracy_vs_cost.png`.
+pub fn refine(scene_file: &Path, params: Option<&Path>, runs: &[String], out: &Path) -> Result<()> {
     let (scene, material) = load(scene_file, params)?;
-    let mut layers = layers.to_vec();
-    layers.sort_unstable();
-    layers.dedup();
+    let runs = runs
+        .iter()
+        .map(|r| Discretization::parse(r, scene.settings.level))
+        .collect::<Result<Vec<_>, String>>()
+        .map_err(|e| anyhow::anyhow!("--refine: {e}"))?;
+    let names: Vec<String> = runs.iter().map(|d| d.to_string()).collect();
     println!(
-        "{}: refinement over {layers:?} points along the specimen, one thread each",
-        scene.experiment.name
+        "{}: {} against {}, one thread each",
+        scene.experiment.name,
+        names[..names.len() - 1].join(", "),
+        names[names.len() - 1]
     );
-    let levels = refinement(&scene, &material, &layers, &|n, r| {
+    let rows = refinement(&scene, &material, &runs, &|d, r| {
         println!(
-            "  {n:>4} layers: {} points, {} steps, {:.2} s",
+            "  {d}: {} points, {} steps, {:.2} s",
             r.particles, r.steps, r.wall_s
         )
     })?;
     std::fs::create_dir_all(out).with_context(|| format!("{}: cannot create", out.display()))?;
-    let mut csv =
-        String::from("layers,particles,steps,wall_s,f1_error_vs_finest,f2_error_vs_finest\n");
-    println!(
-        "{:>7} {:>9} {:>7} {:>9} {:>14} {:>14}",
-        "layers", "points", "steps", "wall s", "F1 vs finest", "F2 vs finest"
+    let mut csv = String::from(
+        "level,layers,particles,steps,wall_s,f1_error_vs_reference,f2_error_vs_reference\n",
     );
-    for l in &levels {
+    println!(
+        "{:>22} {:>9} {:>7} {:>9} {:>14} {:>14}",
+        "level:layers", "points", "steps", "wall s", "F1 vs ref.", "F2 vs ref."
+    );
+    for r in &rows {
+        let d = r.discretization;
         writeln!(
             csv,
-            "{},{},{},{:e},{:e},{:e}",
-            l.layers, l.particles, l.steps, l.wall_s, l.error_incident, l.error_transmitted
+            "{},{},{},{},{:e},{:e},{:e}",
+            d.level.name(),
+            d.layers,
+            r.particles,
+            r.steps,
+            r.wall_s,
+            r.error_incident,
+            r.error_transmitted
         )?;
         println!(
-            "{:>7} {:>9} {:>7} {:>9.2} {:>13.2}% {:>13.2}%",
-            l.layers,
-            l.particles,
-            l.steps,
-            l.wall_s,
-            100.0 * l.error_incident,
-            100.0 * l.error_transmitted
+            "{:>22} {:>9} {:>7} {:>9.2} {:>13.2}% {:>13.2}%",
+            d.to_string(),
+            r.particles,
+            r.steps,
+            r.wall_s,
+            100.0 * r.error_incident,
+            100.0 * r.error_transmitted
         );
     }
     std::fs::write(out.join("refinement.csv"), csv)?;
-    let coarse = &levels[..levels.len() - 1];
-    let series = |label: &str, f: &dyn Fn(&Level) -> f64| Series {
-        label: label.into(),
-        points: coarse.iter().map(|l| (l.wall_s, 100.0 * f(l))).collect(),
-    };
-    let labels: Vec<String> = coarse.iter().map(|l| l.layers.to_string()).collect();
-    LineChart::new(
-        format!(
-            "{}: MPM model, accuracy against cost (layers {} vs {})",
-            scene.experiment.name,
-            labels.join(", "),
-            layers[layers.len() - 1]
-        ),
-        "wall time of one run, 1 thread [s]",
-        "force RMS vs finest over the plateau [%]",
-    )
-    .with(series("F1 (incident face)", &|l| l.error_incident))
-    .with(series("F2 (transmitter face)", &|l| l.error_transmitted))
-    .write_png(&out.join("accuracy_vs_cost.png"))?;
+    accuracy_chart(&scene, &rows, &out.join("accuracy_vs_cost.png"))?;
     println!(
         "refinement.csv and accuracy_vs_cost.png in {}",
         out.display()
     );
     Ok(())
+}
+
+/// Force error against wall time, one line per model level and face, each point a
+/// resolution (the reference, the last row, left out).
+fn accuracy_chart(scene: &ShpbScene, rows: &[Resolution], path: &Path) -> Result<()> {
+    let (coarse, reference) = rows.split_at(rows.len() - 1);
+    let mut chart = LineChart::new(
+        format!(
+            "{}: MPM model, accuracy against cost (vs {})",
+            scene.experiment.name, reference[0].discretization
+        ),
+        "wall time of one run, 1 thread [s]",
+        "force RMS vs reference over the plateau [%]",
+    );
+    let mut levels: Vec<ModelLevel> = Vec::new();
+    for r in coarse {
+        if !levels.contains(&r.discretization.level) {
+            levels.push(r.discretization.level);
+        }
+    }
+    for level in levels {
+        let at = |f: &dyn Fn(&Resolution) -> f64| -> Vec<(f64, f64)> {
+            coarse
+                .iter()
+                .filter(|r| r.discretization.level == level)
+                .map(|r| (r.wall_s, 100.0 * f(r)))
+                .collect()
+        };
+        for (face, points) in [
+            ("F1", at(&|r| r.error_incident)),
+            ("F2", at(&|r| r.error_transmitted)),
+        ] {
+            chart = chart.with(Series {
+                label: format!("{face}, {}", level.name()),
+                points,
+            });
+        }
+    }
+    chart.write_png(path)
 }
 
 pub fn run(scene_file: &Path, params: Option<&Path>, out: &Path, sensitivity: bool) -> Result<()> {

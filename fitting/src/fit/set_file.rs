@@ -23,14 +23,16 @@
 //! [[experiment]]
 //! file = "qs_tension.toml"    # an experiment TOML (fitting::experiment), relative to this file
 //! weight = 1.0                # optional, default 1
-//! level = "single-point"      # model level: "single-point" | "mpm-axisymmetric" (SHPB only:
-//!                             #   the MPM model with friction and inertia, `fit::mpm_shpb`)
-//! layers = 20                 # mpm-axisymmetric: points along the specimen (default 20)
-//! friction = 0.1              # mpm-axisymmetric: Coulomb μ at the faces (default 0.1)
-//! shape_function = "cpdi"     # mpm-axisymmetric: "cpdi" (default) or any other kernel
+//! level = "single-point"      # model level: "single-point" | "mpm-axisymmetric" |
+//!                             #   "mpm-3d-quarter" | "mpm-3d" (SHPB only: the MPM model with
+//!                             #   friction and inertia, `fit::mpm_shpb`; a 3D level costs
+//!                             #   ≈ 30× the axisymmetric one at 20 points along)
+//! layers = 20                 # MPM levels: points along the specimen (default 20)
+//! friction = 0.1              # MPM levels: Coulomb μ at the faces (default 0.1)
+//! shape_function = "cpdi"     # MPM levels: "cpdi" (default) or any other kernel
 //!                             #   (`mpm_core::shape`; "linear" drifts under refinement,
 //!                             #   "ugimp" converges slowly, `fit::mpm_shpb`)
-//! drive = "measured-velocity" # mpm-axisymmetric: the incident face follows the measured
+//! drive = "measured-velocity" # MPM levels: the incident face follows the measured
 //!                             #   v1 − v2 (default), or "incident-pulse": both faces on elastic
 //!                             #   bars, only ε_i drives, the model predicts ε_r and ε_t
 //! thermal = "isothermal"      # tensile: "isothermal" | "adiabatic" (default: adiabatic above 1 1/s)

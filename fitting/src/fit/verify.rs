@@ -97,15 +97,15 @@ pub fn leave_one_rate_out_cases(set_file: &Path) -> Result<Vec<CaseResult>> {
 /// N, C of the single-point fit of its six records (README, "Fitting with the MPM level").
 pub const SYNTHETIC_945: [(&str, f64); 4] = [("A", 362e6), ("B", 329e6), ("N", 0.476), ("C", 0.12)];
 
-/// The MPM-level synthetic (CPDI): the MPM level recovers A and B within
-/// `RECOVERY_TOLERANCE` (uGIMP missed B: +2.4 % at 40 points along against 80); the
-/// single-point level is biased beyond the tolerance and beyond the MPM level.
+/// The MPM-level synthetic (CPDI, data from the 3D quarter): the axisymmetric MPM level
+/// recovers A and B within `RECOVERY_TOLERANCE`; the single-point level is biased beyond
+/// the tolerance and beyond the MPM level.
 pub fn mpm_synthetic_cases(data: &VerifyData) -> Result<Vec<CaseResult>> {
     let base = materials::load_elasto_plastic(data.materials().join("steel_945.toml"))?;
     let (names, values): (Vec<&str>, Vec<f64>) = SYNTHETIC_945.iter().cloned().unzip();
     let truth = with_values(&base, &names, &values);
-    let (data_layers, fit_layers) = (mpm_synthetic::DATA_LAYERS, mpm_synthetic::FIT_LAYERS);
-    let r = mpm_synthetic::recovery(&truth, (data_layers, fit_layers), mpm_synthetic::KERNEL)?;
+    let (data, fit_layers) = (mpm_synthetic::DATA, mpm_synthetic::FIT_LAYERS);
+    let r = mpm_synthetic::recovery(&truth, (data, fit_layers), mpm_synthetic::KERNEL)?;
     let mut rows = Vec::new();
     for (k, name) in mpm_synthetic::FREE.iter().enumerate() {
         let tol = RECOVERY_TOLERANCE
@@ -114,7 +114,7 @@ pub fn mpm_synthetic_cases(data: &VerifyData) -> Result<Vec<CaseResult>> {
             .unwrap()
             .1;
         let level = format!(
-            "MPM level ({}, {fit_layers} points along, data at {data_layers})",
+            "axisymmetric MPM level ({}, {fit_layers} points along, data from {data})",
             mpm_synthetic::KERNEL.name()
         );
         rows.push(CaseResult::relative(

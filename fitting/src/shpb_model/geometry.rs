@@ -73,6 +73,34 @@ impl std::str::FromStr for ModelLevel {
     }
 }
 
+/// A model level at a point count along the specimen: `20` (the scene's level) or
+/// `mpm-3d-quarter:40` on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Discretization {
+    pub level: ModelLevel,
+    pub layers: usize,
+}
+
+impl Discretization {
+    /// Read `text`; a bare count takes `default_level`.
+    pub fn parse(text: &str, default_level: ModelLevel) -> Result<Self, String> {
+        let (level, layers) = match text.split_once(':') {
+            Some((level, layers)) => (level.trim().parse()?, layers),
+            None => (default_level, text),
+        };
+        let layers = layers.trim().parse().map_err(|_| {
+            format!("\"{text}\": expected a point count along the specimen, e.g. 20 or mpm-3d-quarter:20")
+        })?;
+        Ok(Discretization { level, layers })
+    }
+}
+
+impl std::fmt::Display for Discretization {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}:{}", self.level.name(), self.layers)
+    }
+}
+
 /// A level's points of the specimen and what comes with them.
 pub struct Specimen<const D: usize> {
     pub kinematics: Kinematics,
@@ -176,6 +204,27 @@ mod tests {
             assert_eq!(m.copies, copies);
         }
         assert_eq!(full.spacing, SVector::<f64, 3>::repeat(2e-4));
+    }
+
+    #[test]
+    fn discretizations_read_back() {
+        let quarter = Discretization {
+            level: ModelLevel::Quarter3d,
+            layers: 40,
+        };
+        assert_eq!(
+            Discretization::parse("mpm-3d-quarter:40", ModelLevel::Full3d),
+            Ok(quarter)
+        );
+        assert_eq!(quarter.to_string(), "mpm-3d-quarter:40");
+        let bare = Discretization::parse(" 20", ModelLevel::Full3d).unwrap();
+        assert_eq!((bare.level, bare.layers), (ModelLevel::Full3d, 20));
+        assert!(Discretization::parse("mpm-3d:x", ModelLevel::Full3d)
+            .unwrap_err()
+            .contains("point count"));
+        assert!(Discretization::parse("3d:20", ModelLevel::Full3d)
+            .unwrap_err()
+            .contains("mpm-3d-quarter"));
     }
 
     #[test]

@@ -46,7 +46,7 @@ pub mod verify;
 
 pub use run::{AnyObserver, FaceHistory, ShpbRun};
 
-pub use geometry::ModelLevel;
+pub use geometry::{Discretization, ModelLevel};
 
 use materials::signal::TimeSignal;
 use materials::Material;

@@ -1,23 +1,24 @@
-//! Accuracy against cost of the SHPB model: one scene at several resolutions. Each
-//! level's face forces are compared with the finest level's over the record's plateau
-//! (RMS of the difference over the finest level's mean force there), beside its wall
-//! time and size: the numbers a user reads to pick a resolution to fit with.
+//! Accuracy against cost of the SHPB model: one scene at several model levels and
+//! resolutions. Each run's face forces are compared with the reference's (the last run,
+//! e.g. the finest 3D model) over the record's plateau (RMS of the difference over the
+//! reference's mean force there), beside its wall time and size: the numbers a user reads
+//! to pick a level and resolution to fit with.
 
 use super::scene::ShpbScene;
-use super::{ShpbRun, CONTACT_CHANGES};
+use super::{Discretization, ShpbRun, CONTACT_CHANGES};
 use crate::shpb::signal::interpolate;
 use anyhow::Result;
 use materials::plasticity::ElastoPlastic;
 
 /// One resolution of the study.
 #[derive(Debug, Clone)]
-pub struct Level {
-    pub layers: usize,
+pub struct Resolution {
+    pub discretization: Discretization,
     pub particles: usize,
     pub steps: usize,
     pub wall_s: f64,
-    /// RMS force difference against the finest level over the plateau, relative to the
-    /// finest level's mean force there, at the incident (F1) and transmitter (F2) face.
+    /// RMS force difference against the reference over the plateau, relative to the
+    /// reference's mean force there, at the incident (F1) and transmitter (F2) face.
     pub error_incident: f64,
     pub error_transmitted: f64,
 }
@@ -33,47 +34,52 @@ pub fn relative_rms(times: &[f64], (t_a, a): (&[f64], &[f64]), (t_b, b): (&[f64]
     (sum2 / n).sqrt() / (sum / n)
 }
 
-/// Run `scene` with `material` at each of `layers` (ascending; the last is the
-/// reference) and report each level against the finest. `progress` is told each level.
+/// Run `scene` with `material` at each of `discretizations` (the last is the reference)
+/// and report each against the reference. `progress` is told each run.
 pub fn refinement(
     scene: &ShpbScene,
     material: &ElastoPlastic,
-    layers: &[usize],
-    progress: &dyn Fn(usize, &ShpbRun),
-) -> Result<Vec<Level>> {
+    discretizations: &[Discretization],
+    progress: &dyn Fn(&Discretization, &ShpbRun),
+) -> Result<Vec<Resolution>> {
     anyhow::ensure!(
-        layers.len() >= 2,
-        "a refinement study needs at least two levels"
+        discretizations.len() >= 2,
+        "a refinement study needs at least two resolutions"
     );
     let mut runs = Vec::new();
-    for &n in layers {
+    for d in discretizations {
         let mut s = scene.settings;
-        s.layers = n;
+        s.layers = d.layers;
+        s.level = d.level;
         let with = ShpbScene {
             settings: s,
             ..scene.clone()
         };
         let run = with.model(material)?.run(with.material(material))?;
-        progress(n, &run);
+        progress(d, &run);
         runs.push(run);
     }
     let times = scene.plateau_times();
-    let finest = &runs[runs.len() - 1].history;
+    let reference = &runs[runs.len() - 1].history;
     Ok(runs
         .iter()
-        .zip(layers)
-        .map(|(r, &n)| {
+        .zip(discretizations)
+        .map(|(r, &discretization)| {
             let h = &r.history;
-            let error = |model: &[f64], reference: &[f64]| {
-                relative_rms(&times, (&h.time_s, model), (&finest.time_s, reference))
+            let error = |model: &[f64], of_reference: &[f64]| {
+                relative_rms(
+                    &times,
+                    (&h.time_s, model),
+                    (&reference.time_s, of_reference),
+                )
             };
-            Level {
-                layers: n,
+            Resolution {
+                discretization,
                 particles: r.particles,
                 steps: r.steps,
                 wall_s: r.wall_s,
-                error_incident: error(&h.force_incident_n, &finest.force_incident_n),
-                error_transmitted: error(&h.force_transmitted_n, &finest.force_transmitted_n),
+                error_incident: error(&h.force_incident_n, &reference.force_incident_n),
+                error_transmitted: error(&h.force_transmitted_n, &reference.force_transmitted_n),
             }
         })
         .collect())

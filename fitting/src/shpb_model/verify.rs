@@ -71,6 +71,24 @@ pub struct Impedance {
     pub theory_error: f64,
 }
 
+impl Impedance {
+    /// (what, measured, theory) of the reflected and the transmitted pulse.
+    fn rows(&self) -> [(&'static str, f64, f64); 2] {
+        [
+            (
+                "reflection eps_r/eps_i",
+                self.reflection,
+                self.reflection_theory,
+            ),
+            (
+                "transmission eps_t/eps_i",
+                self.transmission,
+                self.transmission_theory,
+            ),
+        ]
+    }
+}
+
 fn step_pulse(end: f64) -> FaceSignals {
     let n = 2001;
     let time_s: Vec<f64> = (0..n).map(|k| end * k as f64 / (n - 1) as f64).collect();
@@ -229,15 +247,7 @@ pub fn verify_cases() -> Vec<CaseResult> {
                 "shpb-model/impedance/{name} (Zs/Zb {:.3}) n{layers}",
                 r.impedance_ratio
             );
-            let rows = [
-                ("reflection eps_r/eps_i", r.reflection, r.reflection_theory),
-                (
-                    "transmission eps_t/eps_i",
-                    r.transmission,
-                    r.transmission_theory,
-                ),
-            ];
-            for (what, measured, theory) in rows {
+            for (what, measured, theory) in r.rows() {
                 let name = format!("{prefix} {what}");
                 out.push(match layers == LAYERS[LAYERS.len() - 1] {
                     true => CaseResult::absolute(name, measured, theory, r.theory_error),
@@ -327,15 +337,7 @@ fn solid_level_cases() -> Vec<CaseResult> {
     let at = (ModelLevel::Quarter3d, finest);
     match impedance_check((BAR_MODULUS, 0.3, BAR_DENSITY), at, ShapeFunction::Linear) {
         Ok(r) => {
-            let rows = [
-                ("reflection eps_r/eps_i", r.reflection, r.reflection_theory),
-                (
-                    "transmission eps_t/eps_i",
-                    r.transmission,
-                    r.transmission_theory,
-                ),
-            ];
-            for (what, measured, theory) in rows {
+            for (what, measured, theory) in r.rows() {
                 let row = format!("{name} {what}");
                 out.push(CaseResult::absolute(row, measured, theory, r.theory_error));
             }
