@@ -43,6 +43,8 @@ pub struct LineChart {
     pub series: Vec<Series>,
     /// The x axis counts something (evaluations): ticks only at whole numbers.
     pub integer_x: bool,
+    /// Mark each point (a few points per series, some series of one point).
+    pub markers: bool,
 }
 
 const SIZE: (u32, u32) = (1000, 700);
@@ -59,12 +61,19 @@ impl LineChart {
             y_label: y_label.into(),
             series: Vec::new(),
             integer_x: false,
+            markers: false,
         }
     }
 
     /// Ticks of the x axis only at whole numbers.
     pub fn integer_x(mut self) -> LineChart {
         self.integer_x = true;
+        self
+    }
+
+    /// A circle at each point.
+    pub fn markers(mut self) -> LineChart {
+        self.markers = true;
         self
     }
 
@@ -129,6 +138,10 @@ impl LineChart {
                 .iter()
                 .cloned()
                 .filter(|(x, y)| x.is_finite() && y.is_finite());
+            if self.markers {
+                let circles = points.clone().map(|p| Circle::new(p, 4, color.filled()));
+                chart.draw_series(circles)?;
+            }
             chart
                 .draw_series(LineSeries::new(points, color.stroke_width(2)))?
                 .label(s.label.as_str())

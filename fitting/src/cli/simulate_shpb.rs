@@ -84,7 +84,8 @@ pub fn refine(scene_file: &Path, params: Option<&Path>, runs: &[String], out: &P
         );
     }
     std::fs::write(out.join("refinement.csv"), csv)?;
-    accuracy_chart(&scene, &rows, &out.join("accuracy_vs_cost.png"))?;
+    let chart = out.join("accuracy_vs_cost.png");
+    accuracy_chart(&scene.experiment.name, &rows, &chart)?;
     println!(
         "refinement.csv and accuracy_vs_cost.png in {}",
         out.display()
@@ -94,16 +95,17 @@ pub fn refine(scene_file: &Path, params: Option<&Path>, runs: &[String], out: &P
 
 /// Force error against wall time, one line per model level and face, each point a
 /// resolution (the reference, the last row, left out).
-fn accuracy_chart(scene: &ShpbScene, rows: &[Resolution], path: &Path) -> Result<()> {
+fn accuracy_chart(record: &str, rows: &[Resolution], path: &Path) -> Result<()> {
     let (coarse, reference) = rows.split_at(rows.len() - 1);
     let mut chart = LineChart::new(
         format!(
-            "{}: MPM model, accuracy against cost (vs {})",
-            scene.experiment.name, reference[0].discretization
+            "{record}: MPM model, accuracy against cost (vs {})",
+            reference[0].discretization
         ),
-        "wall time of one run, 1 thread [s]",
+        "log10 wall time of one run, 1 thread [s]",
         "force RMS vs reference over the plateau [%]",
-    );
+    )
+    .markers();
     let mut levels: Vec<ModelLevel> = Vec::new();
     for r in coarse {
         if !levels.contains(&r.discretization.level) {
@@ -115,7 +117,7 @@ fn accuracy_chart(scene: &ShpbScene, rows: &[Resolution], path: &Path) -> Result
             coarse
                 .iter()
                 .filter(|r| r.discretization.level == level)
-                .map(|r| (r.wall_s, 100.0 * f(r)))
+                .map(|r| (r.wall_s.log10(), 100.0 * f(r)))
                 .collect()
         };
         for (face, points) in [
