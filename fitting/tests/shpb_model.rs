@@ -157,6 +157,16 @@ fn contact_changes_on_the_template_equal_a_rebuilt_model() {
     }
 }
 
+/// The shipped MPM-level set file with its paths made absolute, to be written anywhere.
+fn mpm_set_text() -> String {
+    let experiments = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/experiments");
+    let absolute = |folder: &str| format!("\"{}/{folder}", experiments.display());
+    std::fs::read_to_string(experiments.join("fit_945_mpm.toml"))
+        .unwrap()
+        .replace("\"../materials/", &absolute("../materials/"))
+        .replace("\"shpb_steel_945/", &absolute("shpb_steel_945/"))
+}
+
 /// A set file's MPM fields: `drive` names a drive of the model and belongs to the MPM
 /// level; the error names the field (`{:#}` prints the set file and experiment).
 #[test]
@@ -164,17 +174,7 @@ fn a_set_file_with_a_bad_drive_names_it() {
     if scene(Drive::MeasuredVelocity).is_none() {
         return;
     }
-    let experiments = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/experiments");
-    let text = std::fs::read_to_string(experiments.join("fit_945_mpm.toml"))
-        .unwrap()
-        .replace(
-            "\"../materials/",
-            &format!("\"{}/../materials/", experiments.display()),
-        )
-        .replace(
-            "\"shpb_steel_945/",
-            &format!("\"{}/shpb_steel_945/", experiments.display()),
-        );
+    let text = mpm_set_text();
     let first = "level = \"mpm-axisymmetric\"";
     assert!(text.contains(first));
     for (to, expect) in [
@@ -214,7 +214,8 @@ fn a_run_cut_short_is_the_start_of_the_whole_run() {
     assert_eq!(cut.force_transmitted_n[..], whole.force_transmitted_n[..n]);
 }
 
-/// The shipped MPM-level set files load: six records each, compared on F2.
+/// The shipped MPM-level set files load: six records each, compared on F2; with
+/// `level = "mpm-3d-quarter"` the same set loads the 3D quarter's models.
 #[test]
 fn the_shipped_mpm_sets_load() {
     if scene(Drive::MeasuredVelocity).is_none() {
@@ -229,5 +230,16 @@ fn the_shipped_mpm_sets_load() {
             assert_eq!(block.channels, ["F2"], "{file}: {}", block.name);
             assert_eq!(block.model.level(), "axisymmetric MPM SHPB specimen");
         }
+    }
+    // a 3D level in a set file: the same records, the quarter's model
+    let text = mpm_set_text().replace("level = \"mpm-axisymmetric\"", "level = \"mpm-3d-quarter\"");
+    let file = std::env::temp_dir().join(format!("mpw-quarter-{}.toml", std::process::id()));
+    std::fs::write(&file, text).unwrap();
+    let set = fitting::fit::fit_set::FitSet::load(&file);
+    std::fs::remove_file(&file).unwrap();
+    let set = set.unwrap_or_else(|e| panic!("{e:#}"));
+    assert_eq!(set.blocks.len(), 6);
+    for block in &set.blocks {
+        assert_eq!(block.model.level(), "3D quarter MPM SHPB specimen");
     }
 }
