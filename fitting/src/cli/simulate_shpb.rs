@@ -253,7 +253,12 @@ fn charts(out: &Path, scene: &ShpbScene, run: &ShpbRun) -> Result<()> {
     let name = &scene.experiment.name;
     let us = 1e6;
     LineChart::new(
-        format!("{name}: face forces, MPM model vs record"),
+        format!(
+            "{name}: face forces, MPM model ({}, {} along, {}) vs record",
+            scene.settings.level.name(),
+            scene.settings.layers,
+            scene.settings.shape_function.name()
+        ),
         "t [µs]",
         "force [kN]",
     )
