@@ -40,6 +40,12 @@ pub struct ShpbRun {
     pub wall_s: f64,
 }
 
+/// Points from which a run uses the caller's thread pool (a 3D model: the quarter at 40
+/// points along has 51 720); below, a model of a few thousand points runs on one thread
+/// (issue 15), and a fit runs its models side by side. The results do not depend on it
+/// (mpm-core's sums are the same on any thread count).
+const PARALLEL_FROM: usize = 20_000;
+
 /// `run` on one thread, inside its own pool: a model of a few thousand points runs the
 /// parallel loops of a step inline instead of waking threads (issue 15).
 fn one_thread(run: impl FnOnce() -> anyhow::Result<ShpbRun> + Send) -> anyhow::Result<ShpbRun> {
@@ -87,7 +93,7 @@ impl ShpbModel {
         observers: &mut [&mut dyn AnyObserver],
     ) -> anyhow::Result<ShpbRun> {
         let end = end.min(self.end_s());
-        one_thread(|| match &self.template {
+        let run = || match &self.template {
             Discretized::Axisymmetric(t) => self.run_inline(t, material, end, &mut |s| {
                 observers
                     .iter_mut()
@@ -98,7 +104,11 @@ impl ShpbModel {
                     .iter_mut()
                     .try_for_each(|o| Observer::<3>::observe(&mut **o, s))
             }),
-        })
+        };
+        match self.particles() < PARALLEL_FROM {
+            true => one_thread(run),
+            false => run(),
+        }
     }
 
     fn run_inline<const D: usize>(
