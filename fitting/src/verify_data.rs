@@ -55,6 +55,12 @@ impl VerifyData {
         Some(self.root.join("experiments/fit_304l.toml"))
     }
 
+    /// The six-record 945-steel set (single point), if its records are there.
+    pub fn steel_945_set(&self) -> Option<PathBuf> {
+        self.shared("shpb/steel_945")?;
+        Some(self.root.join("experiments/fit_945.toml"))
+    }
+
     /// The experiment files of the six 945-steel SHPB records, if the records are there.
     pub fn steel_945(&self) -> Option<Vec<PathBuf>> {
         self.shared("shpb/steel_945")?;

@@ -1,8 +1,9 @@
-//! Fitting: truth recovery from the shipped synthetic set and the exact Jacobian.
+//! Fitting: truth recovery from the shipped synthetic set, the exact Jacobian, and the
+//! six 945 SHPB records within 5 % RMS.
 
 use fitting::fit::fit_set::{FitSet, Stage};
 use fitting::fit::run::{run_fit, Optimizer};
-use fitting::fit::verify::{jacobian_vs_fd, recovery_cases};
+use fitting::fit::verify::{jacobian_vs_fd, recovery_cases, steel_945_cases};
 use fitting::verify_data::VerifyData;
 use materials::material::Model;
 
@@ -10,6 +11,22 @@ use materials::material::Model;
 #[test]
 fn default_set_recovers_the_truth() {
     for row in recovery_cases(&VerifyData::repository().default_set()).unwrap() {
+        println!("{row}");
+        assert!(row.passed, "{row}");
+    }
+}
+
+/// The six 945 SHPB records at the single-point level: six rows, each record within 5 %
+/// RMS of its fitted face force (skipped without the shared records).
+#[test]
+fn the_945_records_fit_within_five_percent() {
+    let Some(set) = VerifyData::repository().steel_945_set() else {
+        eprintln!("skipped: the 945 records are not in ../shared/data");
+        return;
+    };
+    let rows = steel_945_cases(&set).unwrap();
+    assert_eq!(rows.len(), 6);
+    for row in rows {
         println!("{row}");
         assert!(row.passed, "{row}");
     }
