@@ -101,6 +101,11 @@ impl std::fmt::Display for Discretization {
     }
 }
 
+/// Unit vector along the bars (the last coordinate).
+pub fn bar_axis<const D: usize>() -> SVector<f64, D> {
+    SVector::from_fn(|i, _| if i == D - 1 { 1.0 } else { 0.0 })
+}
+
 /// A level's points of the specimen and what comes with them.
 pub struct Specimen<const D: usize> {
     pub kinematics: Kinematics,
@@ -132,7 +137,6 @@ pub fn specimen<const D: usize>(
     );
     let radius = 0.5 * cylinder.diameter;
     let s = cylinder.length / layers as f64;
-    let axial = |z: f64| SVector::<f64, D>::from_fn(|i, _| if i == D - 1 { z } else { 0.0 });
     if level == ModelLevel::Axisymmetric {
         let box_ = Shape::Box {
             min: SVector::zeros(),
@@ -152,7 +156,7 @@ pub fn specimen<const D: usize>(
     let dz = cylinder.length / (cylinder.length / s_r).round().max(1.0);
     let cylinder_shape = Shape::Cylinder {
         start: SVector::zeros(),
-        end: axial(cylinder.length),
+        end: bar_axis::<D>() * cylinder.length,
         radius,
     };
     let mut points = fill(&cylinder_shape, SVector::repeat(s_r), Kinematics::Solid);

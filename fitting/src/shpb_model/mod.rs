@@ -210,11 +210,6 @@ pub const SPECIMEN: &str = "specimen";
 const TRANSMITTER: usize = 0;
 const INCIDENT: usize = 1;
 
-/// Unit vector along the bars (the last coordinate).
-fn bar_axis<const D: usize>() -> SVector<f64, D> {
-    SVector::from_fn(|i, _| if i == D - 1 { 1.0 } else { 0.0 })
-}
-
 impl ShpbModel {
     /// Discretize `cylinder` at `settings.level` with `settings.layers` points along its
     /// length (two per cell) and place the faces; `material` only fixes the wave speed for
@@ -311,7 +306,7 @@ fn discretize<const D: usize>(
     solver.velocity_bcs.extend(specimen.conditions);
     let s = specimen.spacing[0];
     let omega = settings.contact_factor * c / s;
-    let axis = bar_axis::<D>();
+    let axis = geometry::bar_axis::<D>();
     let face = |name: &str, z: f64, normal: SVector<f64, D>| {
         let mut body =
             RigidBody::half_space(name, axis * z, normal, omega * omega, settings.friction);
