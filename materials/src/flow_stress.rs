@@ -184,6 +184,21 @@ pub struct LogIncrementPath<'a> {
 /// Terms of the binomial series after the constant one.
 const SERIES_TERMS: usize = 10;
 
+/// 1/k for k = 1..=11: the binomial coefficients without divisions (one per local solve).
+const INV_COUNT: [f64; SERIES_TERMS + 1] = [
+    1.0,
+    1.0 / 2.0,
+    1.0 / 3.0,
+    1.0 / 4.0,
+    1.0 / 5.0,
+    1.0 / 6.0,
+    1.0 / 7.0,
+    1.0 / 8.0,
+    1.0 / 9.0,
+    1.0 / 10.0,
+    1.0 / 11.0,
+];
+
 /// α^N near α_n > 0 by its binomial series, exact to round-off: the series is used where
 /// its first omitted term, which bounds the remainder for N < 11 (Lagrange form), is below
 /// half an ulp: Δα/α_n up to 0.05 at N = 0.31. A plastic step of a point in flow has
@@ -206,7 +221,7 @@ impl SeriesPower {
         let mut coefficients = [0.0; SERIES_TERMS];
         let mut c = 1.0;
         for (k, slot) in coefficients.iter_mut().enumerate() {
-            c *= (n - k as f64) / (k as f64 + 1.0);
+            c *= (n - k as f64) * INV_COUNT[k];
             *slot = c;
         }
         let usable = alpha_n > 0.0 && n < (SERIES_TERMS + 1) as f64;
@@ -215,7 +230,7 @@ impl SeriesPower {
             alpha_n_pow,
             coefficients,
             omitted: if usable {
-                (c * (n - SERIES_TERMS as f64) / (SERIES_TERMS as f64 + 1.0)).abs()
+                (c * (n - SERIES_TERMS as f64) * INV_COUNT[SERIES_TERMS]).abs()
             } else {
                 f64::INFINITY
             },

@@ -17,6 +17,9 @@ pub struct State<D = f64> {
     pub alpha: D,
     /// Temperature θ [K].
     pub theta: D,
+    /// Plastic increment Δα of the step that led here (0 after an elastic step) [-]: where
+    /// the next return starts its local solve (a point in flow changes it little per step).
+    pub dalpha: D,
 }
 
 impl<D: Scalar> State<D> {
@@ -26,6 +29,7 @@ impl<D: Scalar> State<D> {
             fp_inv: identity(),
             alpha: c(0.0),
             theta,
+            dalpha: c(0.0),
         }
     }
 
@@ -34,6 +38,7 @@ impl<D: Scalar> State<D> {
             fp_inv: self.fp_inv.map(&f),
             alpha: f(self.alpha),
             theta: f(self.theta),
+            dalpha: f(self.dalpha),
         }
     }
 

@@ -142,7 +142,11 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
             .onset(old_re.alpha, old_re.theta, model.thermal.theta0);
         let phi_trial = von_mises(&tau_trial).re() - onset.tau_y0;
         if phi_trial <= 0.0 {
-            return Ok((tau_trial / j, *old));
+            let new = State {
+                dalpha: c::<D>(0.0),
+                ..*old
+            };
+            return Ok((tau_trial / j, new));
         }
         let f_re = re(f);
         // (Fp⁻¹, α) in real arithmetic, and τ where the return gives it.
@@ -180,6 +184,7 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
             fp_inv,
             alpha,
             theta: old.theta + heating,
+            dalpha,
         };
         let sigma = tau / j;
         if !sigma.iter().all(|s| s.re().is_finite()) {

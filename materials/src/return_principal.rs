@@ -11,10 +11,10 @@
 //! eigenbasis, b_a = e^{2ε_a}, p of ln J^e = Σ_a ε_a^tr): no second pass through Fe.
 
 use crate::error::MaterialError;
-use crate::exp_small::exp_small;
 use crate::flow_stress::{LogIncrementPath, Onset};
 use crate::local_newton::{self, Jacobian};
 use crate::material::State;
+use crate::near_one::{exp_small, ln_near_one};
 use crate::plasticity::ElastoPlastic;
 use crate::sym_eigen;
 use crate::tensor::{inverse, M3};
@@ -113,13 +113,13 @@ pub fn solve(
 ) -> Result<Returned, MaterialError> {
     let fe_trial = f * old.fp_inv;
     let eigen = sym_eigen::decompose(&(fe_trial * fe_trial.transpose()));
-    let eps_trial = eigen.values.map(|l2| 0.5 * l2.ln());
+    let eps_trial = eigen.values.map(|l2| 0.5 * ln_near_one(l2));
     let problem = Problem {
         g: m.elastic.shear_modulus(),
         eps_trial,
         path: LogIncrementPath::new(&m.flow, onset, dt),
     };
-    let y0 = first_guess(&problem, &eigen.values, onset.tau_y0);
+    let y0 = first_guess(&problem, &eigen.values, onset.tau_y0, old.dalpha);
     let y = local_newton::solve(|y| problem.eval(y), y0)?;
     // exp(−√(3/2) Δα N) = diag(λ_a / λ_a^tr) in the eigenbasis.
     let ratio = Vector3::new(
@@ -153,13 +153,20 @@ pub fn solve(
 /// The radial return of the Neo-Hooke deviator s = G dev be, linearized in Δα:
 /// b_a = b_a^tr e^{−2k Δα n_a} gives dq/dΔα = −3 G̃ with G̃ = G Σ n_a² b_a^tr (k = √(3/2),
 /// Σ n_a = 0), so q^tr − 3 G̃ Δα = τ_y(α_n + Δα, Δα/Δt, θ_n) is solved by scalar Newton
-/// steps in u = ln Δα, with the rate and hardening terms of the flow stress. They start from the lower of two upper bounds
-/// of the root: the rate-free (q^tr − τ_y0)/(3G̃), and the increment whose JC rate term
-/// alone takes up q^tr/τ_y0; at MPM time steps the second is within ≈ 0.5 of the root, the
-/// first 2-4 away. q^tr − τ_y(Δα) is a small difference of large numbers, so q^tr must be
-/// the Neo-Hooke value: a log-strain (Hencky) estimate is off by O(ε_e) in q and by
-/// percents in Δα.
-fn first_guess(problem: &Problem, b_trial: &Vector3<f64>, tau_y0: f64) -> SVector<f64, 4> {
+/// steps in u = ln Δα, with the rate and hardening terms of the flow stress. They start from
+/// the lowest of two upper bounds of the root and the previous step's increment
+/// `previous` (where it is > 0): the rate-free (q^tr − τ_y0)/(3G̃), and the increment whose
+/// JC rate term alone takes up q^tr/τ_y0. At MPM time steps the second is within ≈ 0.5 of
+/// the root and the first 2-4 away (4-5 steps); a point in flow is within a few percent
+/// of its previous increment (1-2 steps). q^tr − τ_y(Δα) is a small difference of large
+/// numbers, so q^tr must be the Neo-Hooke value: a log-strain (Hencky) estimate is off by
+/// O(ε_e) in q and by percents in Δα.
+fn first_guess(
+    problem: &Problem,
+    b_trial: &Vector3<f64>,
+    tau_y0: f64,
+    previous: f64,
+) -> SVector<f64, 4> {
     let (g, eps_trial) = (problem.g, problem.eps_trial);
     let k = 1.5f64.sqrt();
     let s_trial = b_trial.add_scalar(-b_trial.mean()) * g;
@@ -174,6 +181,9 @@ fn first_guess(problem: &Problem, b_trial: &Vector3<f64>, tau_y0: f64) -> SVecto
         Some(rate_only) => rate_free.min(rate_only),
         None => rate_free,
     };
+    if previous > 0.0 {
+        u = u.min(previous.ln());
+    }
     for _ in 0..SCALAR_GUESS_STEPS {
         let at = problem.path.at(u);
         let step = (q_trial - 3.0 * g_tilde * at.dalpha - at.tau_y)
@@ -332,6 +342,7 @@ mod rate_kink {
             fp_inv,
             alpha: alpha_n,
             theta,
+            dalpha: 0.0,
         };
         let onset = m.flow.onset(alpha_n, theta, m.thermal.theta0);
         let path = LogIncrementPath::new(&m.flow, &onset, dt);

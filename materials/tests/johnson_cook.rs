@@ -61,6 +61,7 @@ fn barely_plastic_step_at_large_strain_converges() {
         fp_inv,
         alpha: 0.9712945828856001,
         theta: 389.28882346222497,
+        dalpha: 0.0,
     };
     let dt = 2.3786158111633972e-8;
     let mut results = Vec::new();
