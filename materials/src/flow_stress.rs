@@ -206,6 +206,7 @@ const INV_COUNT: [f64; SERIES_TERMS + 1] = [
 #[derive(Debug, Clone, Copy)]
 struct SeriesPower {
     alpha_n: f64,
+    alpha_n_inv: f64,
     /// α_n^N (0 where the series is not used).
     alpha_n_pow: f64,
     /// Binomial coefficients (N choose k), k = 1..=10.
@@ -227,6 +228,7 @@ impl SeriesPower {
         let usable = alpha_n > 0.0 && n < (SERIES_TERMS + 1) as f64;
         SeriesPower {
             alpha_n,
+            alpha_n_inv: 1.0 / alpha_n,
             alpha_n_pow,
             coefficients,
             omitted: if usable {
@@ -244,7 +246,7 @@ impl SeriesPower {
 
     /// α^N at α = α_n + `dalpha`.
     fn at(&self, dalpha: f64, n: f64) -> f64 {
-        let x = dalpha / self.alpha_n;
+        let x = dalpha * self.alpha_n_inv;
         if self.converged(x) {
             let tail = self
                 .coefficients

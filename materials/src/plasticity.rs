@@ -146,7 +146,7 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
                 dalpha: c::<D>(0.0),
                 ..*old
             };
-            return Ok((tau_trial / j, new));
+            return Ok((tau_trial * j.recip(), new));
         }
         let f_re = re(f);
         // (Fp⁻¹, α) in real arithmetic, and τ where the return gives it.
@@ -186,7 +186,7 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
             theta: old.theta + heating,
             dalpha,
         };
-        let sigma = tau / j;
+        let sigma = tau * j.recip();
         if !sigma.iter().all(|s| s.re().is_finite()) {
             return Err(MaterialError::NonFinite {
                 what: "Cauchy stress",

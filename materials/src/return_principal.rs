@@ -28,6 +28,8 @@ const SCALAR_GUESS_TOL: f64 = 1e-3;
 /// The fixed data of one local problem.
 struct Problem<'a> {
     g: f64,
+    /// 1/G, which scales the yield-function row.
+    g_inv: f64,
     eps_trial: Vector3<f64>,
     /// The flow stress along u = ln Δα.
     path: LogIncrementPath<'a>,
@@ -46,7 +48,7 @@ struct Bordered {
 
 impl Jacobian<4> for Bordered {
     fn solve(&self, b: &SVector<f64, 4>) -> Option<SVector<f64, 4>> {
-        let a_inv = self.a.try_inverse()?;
+        let a_inv = inverse(&self.a)?;
         let b_eps = Vector3::new(b[0], b[1], b[2]);
         let (y, w) = (a_inv * b_eps, a_inv * self.c);
         let schur = self.e - self.d.dot(&w);
@@ -69,12 +71,13 @@ impl Problem<'_> {
         let b = Vector3::new(y[0], y[1], y[2]).map(|e| exp_small(2.0 * e));
         let s = b.add_scalar(-b.mean()) * g;
         let s_norm = s.norm();
-        let n = s / s_norm;
+        let s_norm_inv = 1.0 / s_norm;
+        let n = s * s_norm_inv;
         let at = self.path.at(y[3]);
         let k_dalpha = k * at.dalpha;
         let mut r = SVector::<f64, 4>::zeros();
         let mut a = Matrix3::<f64>::identity();
-        let scale = k_dalpha * 2.0 * g / s_norm;
+        let scale = k_dalpha * 2.0 * g * s_norm_inv;
         for j in 0..3 {
             r[j] = y[j] - self.eps_trial[j] + k_dalpha * n[j];
             let scaled_b = scale * b[j];
@@ -83,12 +86,12 @@ impl Problem<'_> {
             }
             a[(j, j)] += scaled_b;
         }
-        r[3] = (k * s_norm - at.tau_y) / g;
+        r[3] = (k * s_norm - at.tau_y) * self.g_inv;
         let jac = Bordered {
             a,
             c: n * k_dalpha,
             d: n.component_mul(&b) * (2.0 * k),
-            e: -at.dtau_y_du / g,
+            e: -at.dtau_y_du * self.g_inv,
         };
         (r, jac)
     }
@@ -116,6 +119,7 @@ pub fn solve(
     let eps_trial = eigen.values.map(|l2| 0.5 * ln_near_one(l2));
     let problem = Problem {
         g: m.elastic.shear_modulus(),
+        g_inv: 1.0 / m.elastic.shear_modulus(),
         eps_trial,
         path: LogIncrementPath::new(&m.flow, onset, dt),
     };
@@ -176,13 +180,15 @@ fn first_guess(
     // (φ^tr > 0 was decided on σ, q^tr here comes from eigenvalues: at φ^tr ≈ 0 round-off
     // may leave them a few ulps apart.)
     let overstress = (q_trial - tau_y0).max(f64::EPSILON * q_trial);
-    let rate_free = (overstress / (3.0 * g_tilde)).ln();
-    let mut u = match problem.path.rate_only_bound(q_trial / tau_y0) {
-        Some(rate_only) => rate_free.min(rate_only),
-        None => rate_free,
+    let rate_free = overstress / (3.0 * g_tilde);
+    let lowest = if previous > 0.0 {
+        rate_free.min(previous)
+    } else {
+        rate_free
     };
-    if previous > 0.0 {
-        u = u.min(previous.ln());
+    let mut u = lowest.ln();
+    if let Some(rate_only) = problem.path.rate_only_bound(q_trial / tau_y0) {
+        u = u.min(rate_only);
     }
     for _ in 0..SCALAR_GUESS_STEPS {
         let at = problem.path.at(u);
@@ -255,6 +261,7 @@ mod tests {
         };
         let p = Problem {
             g: m.elastic.shear_modulus(),
+            g_inv: 1.0 / m.elastic.shear_modulus(),
             eps_trial: Vector3::new(0.03, -0.01, -0.015),
             path: LogIncrementPath::new(&m.flow, &m.flow.onset(0.1, 350.0, m.thermal.theta0), 1e-5),
         };
