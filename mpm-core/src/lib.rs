@@ -18,6 +18,7 @@ pub mod boundary;
 pub mod contact;
 pub mod discretize;
 pub mod failure;
+pub mod grain;
 pub mod grid;
 pub mod kinematics;
 pub mod material_block;

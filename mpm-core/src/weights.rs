@@ -5,6 +5,7 @@
 //! (USF and MUSL map to the grid twice and back twice; positions do not move until the
 //! step's last stage).
 
+use crate::grain;
 use crate::grid::Grid;
 use crate::shape::{Hex, Kernel, Point, Reach};
 use nalgebra::{Matrix3, SVector};
@@ -78,6 +79,7 @@ impl<const D: usize> WeightCache<D> {
             .zip(self.first[range].par_iter_mut())
             .zip(self.n[start * nodes..end * nodes].par_chunks_mut(nodes))
             .zip(self.grad[start * nodes..end * nodes].par_chunks_mut(nodes))
+            .with_min_len(grain::light(positions.len(), end - start))
             .for_each(|((((k, x), first), n), grad)| {
                 let i = start + k;
                 let (corner, xi) = grid.locate(x);

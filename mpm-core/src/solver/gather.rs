@@ -5,6 +5,7 @@
 
 use super::Solver;
 use crate::failure::{Cause, SimulationError};
+use crate::grain;
 use crate::grid::Grid;
 use crate::kinematics::Kinematics;
 use crate::sum::fixed_sum;
@@ -111,6 +112,12 @@ impl<const D: usize> Solver<D> {
         let mut first_failure: Option<(usize, Cause)> = None;
         for block in &mut self.blocks {
             let r = block.range.clone();
+            // the material update is always split; a velocity update alone is light
+            let grain = if deformation {
+                1
+            } else {
+                grain::light(p.len(), r.len())
+            };
             let update = Deformation {
                 material: &*block.material,
                 dt,
@@ -136,6 +143,7 @@ impl<const D: usize> Solver<D> {
             )
                 .into_par_iter()
                 .enumerate()
+                .with_min_len(grain)
                 .filter_map(
                     |(j, (x, x_ref, v, v0, volume, f, sigma, state, v_grid, work))| {
                         let i = r.start + j;

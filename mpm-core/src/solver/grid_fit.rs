@@ -5,6 +5,7 @@
 
 use super::Solver;
 use crate::failure::{Cause, SimulationError};
+use crate::grain;
 use crate::shape::{
     CpGimp, CpGimpAnalytic, Cpdi, CpdiHex, Kernel, Linear, Point, Reach, ShapeFunction, UGimp,
 };
@@ -68,6 +69,7 @@ impl<const D: usize> Solver<D> {
         let x = &self.particles.position;
         let (lo, hi) = x
             .par_iter()
+            .with_min_len(grain::light(x.len(), x.len()))
             .fold(
                 || {
                     (
@@ -112,8 +114,10 @@ impl<const D: usize> Solver<D> {
             return (Reach::CELL, 0.0, first);
         }
         let (p, inv_h) = (&self.particles, &self.grid.inv_spacing);
+        let whole = grain::light(p.len(), range.len());
         let (extent, widest) = range
             .into_par_iter()
+            .with_min_len(whole)
             .map(|i| {
                 let point = Point {
                     xi: SVector::zeros(),

@@ -5,6 +5,7 @@
 
 use super::Solver;
 use crate::boundary::VelocityBc;
+use crate::grain;
 use crate::grid::Node;
 use nalgebra::SVector;
 use rayon::prelude::*;
@@ -99,11 +100,13 @@ impl<const D: usize> Solver<D> {
                 .collect(),
         };
         let meta = self.grid.clone_meta();
+        let whole = grain::light(self.particles.len(), self.grid.nodes.len().div_ceil(CHUNK));
         let work: Vec<ChunkWork> = self
             .grid
             .nodes
             .par_chunks_mut(CHUNK)
             .enumerate()
+            .with_min_len(whole)
             .map(|(chunk, nodes)| {
                 let mut w = (0.0, 0.0, 0.0);
                 for (j, n) in nodes.iter_mut().enumerate() {

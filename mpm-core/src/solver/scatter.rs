@@ -5,6 +5,7 @@
 //! particles in index order, so the sums do not depend on the number of threads.
 
 use super::Solver;
+use crate::grain;
 use crate::grid::Node;
 use crate::kinematics::Kinematics;
 use crate::particles::Particles;
@@ -81,11 +82,15 @@ impl<const D: usize> Solver<D> {
                 body_force: self.settings.body_force,
                 kinematics: self.settings.kinematics,
             };
-            parts.into_par_iter().for_each(|(k, start, nodes)| {
-                for &i in &s.order[s.slab_start[k]..s.slab_start[k + 1]] {
-                    sources.add(i as usize, t, start, nodes);
-                }
-            });
+            let whole = grain::light(self.particles.len(), parts.len());
+            parts
+                .into_par_iter()
+                .with_min_len(whole)
+                .for_each(|(k, start, nodes)| {
+                    for &i in &s.order[s.slab_start[k]..s.slab_start[k + 1]] {
+                        sources.add(i as usize, t, start, nodes);
+                    }
+                });
         }
         if t.force {
             self.add_surface_loads();
@@ -93,18 +98,23 @@ impl<const D: usize> Solver<D> {
     }
 
     fn clear_nodes(&mut self, t: Transfer) {
-        self.grid.nodes.par_iter_mut().for_each(|n| {
-            if t.mass {
-                n.mass = 0.0;
-                n.heaviest = 0.0;
-            }
-            if t.momentum {
-                n.momentum = SVector::zeros();
-            }
-            if t.force {
-                n.force = SVector::zeros();
-            }
-        });
+        let whole = grain::light(self.particles.len(), self.grid.nodes.len());
+        self.grid
+            .nodes
+            .par_iter_mut()
+            .with_min_len(whole)
+            .for_each(|n| {
+                if t.mass {
+                    n.mass = 0.0;
+                    n.heaviest = 0.0;
+                }
+                if t.momentum {
+                    n.momentum = SVector::zeros();
+                }
+                if t.force {
+                    n.force = SVector::zeros();
+                }
+            });
     }
 
     /// Stable counting sort of the particles by the slab of their first stencil node.

@@ -8,6 +8,7 @@
 //! Every change is kept in `Solver::time_step_changes` for the run log.
 
 use super::Solver;
+use crate::grain;
 use rayon::prelude::*;
 
 /// A change of Δt during a run, or a fixed Δt found beyond the CFL limit.
@@ -54,6 +55,7 @@ impl<const D: usize> Solver<D> {
                 let c = b.wave_speed();
                 v[b.range.clone()]
                     .par_iter()
+                    .with_min_len(grain::light(v.len(), b.range.len()))
                     .map(|v| c + v.norm())
                     .reduce(|| 0.0, f64::max)
             })

@@ -1,0 +1,33 @@
+//! How finely a parallel loop is cut (issue 15). A fork-join costs the wake-up of an idle
+//! worker, 10-20 µs on a 2-core VM, and leaves it spinning in `sched_yield` until it
+//! sleeps again. The light loops (weights, transfers without the material, grid solve,
+//! advection, sums: 5-50 ns per item) of a model with fewer than `LIGHT_PARALLEL_FROM`
+//! points save less than that, so they run whole on the calling thread; the material
+//! update (≈ 0.1-1 µs per point) is always split. Either way the results are the same to
+//! the bit: no loop's arithmetic depends on how it is cut.
+
+/// Points from which a model's light loops are split across the pool.
+pub const LIGHT_PARALLEL_FROM: usize = 20_000;
+
+/// The least piece (`with_min_len`) of a light loop over `len` items in a model of
+/// `points` points: the whole loop below `LIGHT_PARALLEL_FROM`, else rayon's adaptive
+/// split.
+pub fn light(points: usize, len: usize) -> usize {
+    if points < LIGHT_PARALLEL_FROM {
+        len.max(1)
+    } else {
+        1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn small_models_keep_a_light_loop_whole() {
+        assert_eq!(light(2_940, 2_940), 2_940);
+        assert_eq!(light(2_940, 0), 1);
+        assert_eq!(light(63_812, 63_812), 1);
+    }
+}
