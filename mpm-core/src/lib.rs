@@ -44,7 +44,7 @@ pub use kinematics::Kinematics;
 pub use material_block::MaterialBlock;
 pub use particles::Particles;
 pub use rigid::RigidBody;
-pub use solver::{Energies, RunError, Scheme, Settings, Solver};
+pub use solver::{Energies, RunError, Scheme, Settings, Solver, StageTimes};
 pub use template::{Template, TemplateError};
 pub use timestep::TimeStep;
 pub use viscosity::BulkViscosity;

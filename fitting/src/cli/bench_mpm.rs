@@ -14,12 +14,13 @@
 //! or not) on the same threads and timed: that is the material share; the rest of a step
 //! is transfers (scatter, grid solve, gather, contact).
 
+use super::bench_small::{alone, concurrent, median, SmallRun};
 use anyhow::Result;
 use materials::signal::TimeSignal;
 use materials::Material;
 use mpm_core::discretize::{fill, Shape};
 use mpm_core::shape::{Reach, ShapeFunction};
-use mpm_core::{Kinematics, RigidBody, Scheme, Settings, Solver};
+use mpm_core::{Kinematics, RigidBody, Scheme, Settings, Solver, StageTimes};
 use nalgebra::{SVector, Vector3};
 use rayon::prelude::*;
 use std::path::PathBuf;
@@ -49,6 +50,9 @@ pub struct Args {
     /// grid and back twice a step).
     #[arg(long, default_value = "usl", value_parser = ["usl", "usf", "musl"])]
     pub scheme: String,
+    /// Measurements of each small case (c, n); the median rate is reported with the range.
+    #[arg(long, default_value_t = 3)]
+    pub repeats: usize,
     /// Shape functions of (a) and (b), each measured: linear, ugimp, cpgimp,
     /// cpgimp-analytic, cpdi, cpdi-hex (points' domains the lattice cells).
     #[arg(long, value_delimiter = ',', default_value = "linear")]
@@ -319,45 +323,48 @@ const SMALL_TARGETS: [(usize, f64); 2] = [(1, 2.6e6), (2, 4.5e6)];
 const CONCURRENT_TARGET: f64 = 1.8;
 
 /// Cases (c) and (n): the small model alone at each thread count, and one copy per
-/// thread at once; system time as a share of wall time (target under 5 %).
+/// thread at once, each the median of `--repeats` measurements with their range; system
+/// time as a share of wall time (target under 5 %); then where a step of (c) goes.
 fn small_cases(args: &Args) -> Result<()> {
     let (run_alone, run_many) = (args.cases.contains(&'c'), args.cases.contains(&'n'));
     if !run_alone && !run_many {
         return Ok(());
     }
-    let steps = 10 * args.steps.max(1);
+    let (steps, repeats) = (10 * args.steps.max(1), args.repeats);
     println!(
-        "{:<34} {:>9} {:>8} {:>16} {:>10} {:>10}",
+        "{:<34} {:>9} {:>8} {:>16} {:>10} {:>10}   median of {repeats}, range",
         "small models (scene's MUSL)", "particles", "threads", "particle-steps/s", "user", "system"
     );
-    let row = |name: &str, threads: usize, r: &super::bench_small::SmallRun, verdict: String| {
-        println!(
-            "{name:<34} {:>9} {threads:>8} {:>16.3e} {:>9.0}% {:>9.1}%{verdict}",
+    let row = |name: &str, threads: usize, (r, low, high): &(SmallRun, f64, f64)| {
+        print!(
+            "{name:<34} {:>9} {threads:>8} {:>16.3e} {:>9.0}% {:>9.1}%   {low:.3e}-{high:.3e}",
             r.particles,
             r.rate,
             100.0 * r.user_s / r.wall_s,
             100.0 * r.system_s / r.wall_s
         )
     };
-    let one = super::bench_small::alone(1, steps, args.warm_up)?;
+    let one = median(repeats, || alone(1, steps, args.warm_up))?;
+    let mut stage_rows = Vec::new();
     for &threads in &args.threads {
         let r = match threads {
-            1 => one,
-            _ => super::bench_small::alone(threads, steps, args.warm_up)?,
+            1 => one.clone(),
+            _ => median(repeats, || alone(threads, steps, args.warm_up))?,
         };
         if run_alone {
-            let verdict = SMALL_TARGETS.iter().find(|t| t.0 == threads).map_or(
-                String::new(),
-                |&(_, target)| {
-                    let met = if r.rate >= target { "met" } else { "NOT met" };
-                    format!("  (target {target:.1e}: {met})")
-                },
-            );
-            row("(c) axisymmetric Taylor bar", threads, &r, verdict);
+            row("(c) axisymmetric Taylor bar", threads, &r);
+            match SMALL_TARGETS.iter().find(|t| t.0 == threads) {
+                Some(&(_, target)) => {
+                    let met = if r.0.rate >= target { "met" } else { "NOT met" };
+                    println!("  (target {target:.1e}: {met})");
+                }
+                None => println!(),
+            }
+            stage_rows.push((threads, r.0.stages.clone()));
         }
         if run_many && threads > 1 {
-            let many = super::bench_small::concurrent(threads, steps, args.warm_up)?;
-            let speedup = many.rate / one.rate;
+            let many = median(repeats, || concurrent(threads, steps, args.warm_up))?;
+            let speedup = many.0.rate / one.0.rate;
             let met = if speedup >= CONCURRENT_TARGET {
                 "met"
             } else {
@@ -367,11 +374,31 @@ fn small_cases(args: &Args) -> Result<()> {
                 &format!("(n) {threads} Taylor bars at once"),
                 threads,
                 &many,
-                format!(
-                    "  ({speedup:.2}× one model on one thread; target {CONCURRENT_TARGET}×: {met})"
-                ),
+            );
+            println!(
+                "  ({speedup:.2}× one model on one thread; target {CONCURRENT_TARGET}×: {met})"
             );
         }
     }
+    print_stages(&stage_rows, steps);
     Ok(())
+}
+
+/// Mean wall time per step of each stage of (c), one column per thread count [µs].
+fn print_stages(rows: &[(usize, StageTimes)], steps: usize) {
+    let Some((_, first)) = rows.first() else {
+        return;
+    };
+    print!("{:<34}", "(c) µs per step, by stage");
+    for (threads, _) in rows {
+        print!(" {:>10}", format!("{threads} thr."));
+    }
+    println!();
+    for (k, (stage, _)) in first.0.iter().enumerate() {
+        print!("  {:<32}", stage.to_string());
+        for (_, times) in rows {
+            print!(" {:>10.1}", 1e6 * times.0[k].1.as_secs_f64() / steps as f64);
+        }
+        println!();
+    }
 }

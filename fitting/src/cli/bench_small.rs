@@ -3,11 +3,12 @@
 //! of it as threads run at once, one thread each, as a fit evaluates its experiments.
 //! Each measurement gives particle-steps per second and the user and system CPU time of
 //! the process over the measured steps (`getrusage`), so that time spent waking and
-//! parking threads shows as system time.
+//! parking threads shows as system time; a model alone also gives its time per stage.
+//! `median` picks the median of repeated measurements, as this VM's rates drift.
 
 use anyhow::{bail, Result};
 use mpm_core::scene::{self, Simulation};
-use mpm_core::Solver;
+use mpm_core::{Solver, StageTimes};
 use std::path::Path;
 use std::sync::Barrier;
 use std::time::Instant;
@@ -16,7 +17,7 @@ use std::time::Instant;
 pub const SCENE: &str = "data/scenes/taylor_bar_axisymmetric.toml";
 
 /// Throughput and CPU time of one measurement.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct SmallRun {
     pub particles: usize,
     /// Particle-steps per second of wall time, over all models.
@@ -24,6 +25,8 @@ pub struct SmallRun {
     pub wall_s: f64,
     pub user_s: f64,
     pub system_s: f64,
+    /// Wall time per stage over the measured steps (one model alone; empty for `concurrent`).
+    pub stages: StageTimes,
 }
 
 fn model() -> Result<Solver<2>> {
@@ -55,7 +58,8 @@ fn timed(f: impl FnOnce() -> Result<()>) -> Result<(f64, f64, f64)> {
     Ok((wall, user_after - user, system_after - system))
 }
 
-/// One model stepped `warm_up` steps untimed, then `steps` timed, on `threads` threads.
+/// One model stepped `warm_up` steps untimed, then `steps` timed (each stage's time too),
+/// on `threads` threads.
 pub fn alone(threads: usize, steps: usize, warm_up: usize) -> Result<SmallRun> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -66,9 +70,10 @@ pub fn alone(threads: usize, steps: usize, warm_up: usize) -> Result<SmallRun> {
         for _ in 0..warm_up {
             s.step()?;
         }
+        let mut stages = StageTimes::default();
         let (wall_s, user_s, system_s) = timed(|| {
             for _ in 0..steps {
-                s.step()?;
+                s.step_timed(&mut stages)?;
             }
             Ok(())
         })?;
@@ -79,6 +84,7 @@ pub fn alone(threads: usize, steps: usize, warm_up: usize) -> Result<SmallRun> {
             wall_s,
             user_s,
             system_s,
+            stages,
         })
     })
 }
@@ -128,6 +134,21 @@ pub fn concurrent(copies: usize, steps: usize, warm_up: usize) -> Result<SmallRu
             wall_s,
             user_s,
             system_s,
+            stages: StageTimes::default(),
         })
     })
+}
+
+/// The measurement with the median rate of `repeats` runs of `measure`, and the lowest and
+/// highest rate [particle-steps/s].
+pub fn median(
+    repeats: usize,
+    mut measure: impl FnMut() -> Result<SmallRun>,
+) -> Result<(SmallRun, f64, f64)> {
+    let mut runs = (0..repeats.max(1))
+        .map(|_| measure())
+        .collect::<Result<Vec<_>>>()?;
+    runs.sort_by(|a, b| a.rate.total_cmp(&b.rate));
+    let (low, high) = (runs[0].rate, runs[runs.len() - 1].rate);
+    Ok((runs.swap_remove(runs.len() / 2), low, high))
 }

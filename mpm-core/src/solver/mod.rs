@@ -26,6 +26,10 @@ pub use scheme::{Scheme, Stage};
 pub use settings::Settings;
 pub use time_step::TimeStepChange;
 
+/// Wall time per stage of a scheme, summed over the steps of `Solver::step_timed`.
+#[derive(Debug, Clone, Default)]
+pub struct StageTimes(pub Vec<(Stage, Duration)>);
+
 use crate::boundary::{SpringBc, VelocityBc};
 use crate::contact::ContactState;
 use crate::failure::{Cause, SimulationError};
@@ -43,6 +47,7 @@ use materials::signal::TimeSignal;
 use materials::Material;
 use nalgebra::SVector;
 use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 /// A rigid body and its contact state.
 #[derive(Clone)]
@@ -233,6 +238,21 @@ impl<const D: usize> Solver<D> {
         Ok(())
     }
 
+    /// `step`, adding each stage's wall time to `times` (for benchmarks: where a step's
+    /// time goes).
+    pub fn step_timed(&mut self, times: &mut StageTimes) -> Result<(), SimulationError> {
+        let stages = self.settings.scheme.stages();
+        if times.0.len() != stages.len() {
+            times.0 = stages.iter().map(|&s| (s, Duration::ZERO)).collect();
+        }
+        for (&stage, (_, total)) in stages.iter().zip(&mut times.0) {
+            let start = Instant::now();
+            self.run_stage(stage)?;
+            *total += start.elapsed();
+        }
+        Ok(())
+    }
+
     fn run_stage(&mut self, stage: Stage) -> Result<(), SimulationError> {
         use scatter::Transfer;
         match stage {
@@ -302,8 +322,9 @@ mod tests {
     use nalgebra::Matrix3;
     use nalgebra::Vector3;
 
-    /// A soft cube dropped with spin onto a rough plane, 200 steps: every particle's state.
-    fn run() -> (Vec<SVector<f64, 3>>, Vec<Matrix3<f64>>, f64) {
+    /// A soft cube dropped with spin onto a rough plane, points `spacing` apart, ready to
+    /// step.
+    fn cube(spacing: f64) -> Solver<3> {
         let mut settings = Settings::<3>::new(Kinematics::Solid, 0.1);
         settings.body_force = Vector3::new(0.0, 0.0, -10.0);
         settings.grid_shift = Some((Vector3::repeat(0.02), 7));
@@ -314,7 +335,7 @@ mod tests {
                 min: Vector3::new(0.0, 0.0, 0.02),
                 max: Vector3::repeat(1.0),
             },
-            Vector3::repeat(0.05),
+            Vector3::repeat(spacing),
             Kinematics::Solid,
         );
         s.add_body(
@@ -336,9 +357,13 @@ mod tests {
             0.3,
         ));
         s.initialize();
-        for _ in 0..200 {
-            s.step().unwrap();
-        }
+        s
+    }
+
+    /// Every particle's position and stress, and the internal energy.
+    type Outcome = (Vec<SVector<f64, 3>>, Vec<Matrix3<f64>>, f64);
+
+    fn outcome(s: &Solver<3>) -> Outcome {
         (
             s.particles.position.clone(),
             s.particles.stress.clone(),
@@ -432,19 +457,52 @@ mod tests {
         assert!(s.time > 0.01, "the ramp ends inside the run ({} s)", s.time);
     }
 
+    /// 200 steps on 1, 2 and 4 threads, bit for bit: a model below
+    /// `grain::LIGHT_PARALLEL_FROM` points (only its material update is split) and one
+    /// above it (every loop split).
     #[test]
     fn results_do_not_depend_on_the_thread_count() {
-        let with = |threads| {
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap()
-                .install(run)
-        };
-        let (one, two, four) = (with(1), with(2), with(4));
-        assert!(one.0 == two.0 && one.0 == four.0, "positions differ");
-        assert!(one.1 == two.1 && one.1 == four.1, "stresses differ");
-        assert_eq!(one.2.to_bits(), two.2.to_bits());
-        assert_eq!(one.2.to_bits(), four.2.to_bits());
+        for (spacing, split) in [(0.05, false), (0.0345, true)] {
+            let with = |threads| {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                pool.install(|| {
+                    let mut s = cube(spacing);
+                    assert_eq!(
+                        s.particles.len() >= crate::grain::LIGHT_PARALLEL_FROM,
+                        split,
+                        "{} points",
+                        s.particles.len()
+                    );
+                    for _ in 0..200 {
+                        s.step().unwrap();
+                    }
+                    outcome(&s)
+                })
+            };
+            let (one, two, four) = (with(1), with(2), with(4));
+            assert!(one.0 == two.0 && one.0 == four.0, "positions differ");
+            assert!(one.1 == two.1 && one.1 == four.1, "stresses differ");
+            assert_eq!(one.2.to_bits(), two.2.to_bits());
+            assert_eq!(one.2.to_bits(), four.2.to_bits());
+        }
+    }
+
+    /// `step_timed` takes the steps of `step` and times each stage of the scheme.
+    #[test]
+    fn step_timed_is_step_with_the_stage_times() {
+        let (mut plain, mut timed) = (cube(0.05), cube(0.05));
+        let mut times = StageTimes::default();
+        for _ in 0..20 {
+            plain.step().unwrap();
+            timed.step_timed(&mut times).unwrap();
+        }
+        assert!(outcome(&plain) == outcome(&timed), "the timed steps differ");
+        let stages: Vec<Stage> = times.0.iter().map(|(s, _)| *s).collect();
+        assert_eq!(stages, plain.settings.scheme.stages());
+        let total: Duration = times.0.iter().map(|(_, t)| *t).sum();
+        assert!(total > Duration::ZERO);
     }
 }
