@@ -14,7 +14,7 @@ pub const TOL: f64 = 1e-13;
 pub const MAX_ITERATIONS: usize = 60;
 pub const MAX_LOG_STEP: f64 = 5.0;
 /// A full Newton step smaller than this ends the solve without another evaluation: the
-/// error left after it is O(|dx|²) ≈ 1e-14 in the log strains and ln Δα, at `TOL`. (At
+/// error left after it is O(|dx|²) ≈ 1e-14 in the log strains and ln Δα, below `TOL`. (At
 /// 1e-9 a JC return at first yield took one more evaluation: 749 → 687 ns per step.)
 pub const CONVERGED_STEP: f64 = 1e-7;
 

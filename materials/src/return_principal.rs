@@ -61,7 +61,17 @@ impl Jacobian<4> for Bordered {
     }
 }
 
-impl Problem<'_> {
+impl<'a> Problem<'a> {
+    fn new(m: &'a ElastoPlastic<f64>, eps_trial: Vector3<f64>, onset: &Onset, dt: f64) -> Self {
+        let g = m.elastic.shear_modulus();
+        Problem {
+            g,
+            g_inv: 1.0 / g,
+            eps_trial,
+            path: LogIncrementPath::new(&m.flow, onset, dt),
+        }
+    }
+
     /// Residual r(y) and its Jacobian, derived by hand (this is the hot path):
     /// ∂s_a/∂ε_b = 2G (b_a δ_ab − b_b/3), ∂‖s‖/∂ε_b = 2G n_b b_b (Σ n_a = 0),
     /// ∂n_a/∂ε_b = (∂s_a/∂ε_b − n_a ∂‖s‖/∂ε_b)/‖s‖ = 2G/‖s‖ (b_a δ_ab − (1/3 + n_a n_b) b_b).
@@ -117,12 +127,7 @@ pub fn solve(
     let fe_trial = f * old.fp_inv;
     let eigen = sym_eigen::decompose(&(fe_trial * fe_trial.transpose()));
     let eps_trial = eigen.values.map(|l2| 0.5 * ln_near_one(l2));
-    let problem = Problem {
-        g: m.elastic.shear_modulus(),
-        g_inv: 1.0 / m.elastic.shear_modulus(),
-        eps_trial,
-        path: LogIncrementPath::new(&m.flow, onset, dt),
-    };
+    let problem = Problem::new(m, eps_trial, onset, dt);
     let y0 = first_guess(&problem, &eigen.values, onset.tau_y0, old.dalpha);
     let y = local_newton::solve(|y| problem.eval(y), y0)?;
     // exp(−√(3/2) Δα N) = diag(λ_a / λ_a^tr) in the eigenbasis.
@@ -259,12 +264,8 @@ mod tests {
             },
             return_map: ReturnMap::Principal,
         };
-        let p = Problem {
-            g: m.elastic.shear_modulus(),
-            g_inv: 1.0 / m.elastic.shear_modulus(),
-            eps_trial: Vector3::new(0.03, -0.01, -0.015),
-            path: LogIncrementPath::new(&m.flow, &m.flow.onset(0.1, 350.0, m.thermal.theta0), 1e-5),
-        };
+        let onset = m.flow.onset(0.1, 350.0, m.thermal.theta0);
+        let p = Problem::new(&m, Vector3::new(0.03, -0.01, -0.015), &onset, 1e-5);
         let y = SVector::<f64, 4>::new(0.02, -0.008, -0.012, (0.004f64).ln());
         let (_, jac) = p.eval(&y);
         let h = 1e-7;

@@ -9,12 +9,12 @@
 /// Points from which a model's light loops are split across the pool.
 pub const LIGHT_PARALLEL_FROM: usize = 20_000;
 
-/// The least piece (`with_min_len`) of a light loop over `len` items in a model of
-/// `points` points: the whole loop below `LIGHT_PARALLEL_FROM`, else rayon's adaptive
-/// split.
-pub fn light(points: usize, len: usize) -> usize {
+/// The least piece (`with_min_len`) of a light loop in a model of `points` points: the
+/// whole loop (`usize::MAX`: never split) below `LIGHT_PARALLEL_FROM`, else rayon's
+/// adaptive split.
+pub fn light(points: usize) -> usize {
     if points < LIGHT_PARALLEL_FROM {
-        len.max(1)
+        usize::MAX
     } else {
         1
     }
@@ -26,8 +26,8 @@ mod tests {
 
     #[test]
     fn small_models_keep_a_light_loop_whole() {
-        assert_eq!(light(2_940, 2_940), 2_940);
-        assert_eq!(light(2_940, 0), 1);
-        assert_eq!(light(63_812, 63_812), 1);
+        assert_eq!(light(2_940), usize::MAX);
+        assert_eq!(light(LIGHT_PARALLEL_FROM - 1), usize::MAX);
+        assert_eq!(light(LIGHT_PARALLEL_FROM), 1);
     }
 }

@@ -1,7 +1,7 @@
 //! A material block: one material model, the contiguous range of particles made of it and
-//! their history variables `State { fp_inv, alpha, theta, dalpha }`, kept per block rather than in
-//! a particle struct so that elastic and plastic bodies each store only what they use
-//! (the history of every point of a block has the same layout).
+//! their history variables `State { fp_inv, alpha, theta, dalpha }`, kept per block rather
+//! than in a particle struct so that elastic and plastic bodies each store only what they
+//! use (the history of every point of a block has the same layout).
 
 use crate::shape::ShapeFunction;
 use materials::{Material, State};

@@ -16,7 +16,7 @@ where
     let chunks = n.div_ceil(CHUNK);
     let partial: Vec<T> = (0..chunks)
         .into_par_iter()
-        .with_min_len(grain::light(n, chunks))
+        .with_min_len(grain::light(n))
         .map(|c| (c * CHUNK..((c + 1) * CHUNK).min(n)).fold(zero, |s, i| s + f(i)))
         .collect();
     partial.into_iter().fold(zero, |s, x| s + x)

@@ -79,7 +79,7 @@ impl<const D: usize> WeightCache<D> {
             .zip(self.first[range].par_iter_mut())
             .zip(self.n[start * nodes..end * nodes].par_chunks_mut(nodes))
             .zip(self.grad[start * nodes..end * nodes].par_chunks_mut(nodes))
-            .with_min_len(grain::light(positions.len(), end - start))
+            .with_min_len(grain::light(positions.len()))
             .for_each(|((((k, x), first), n), grad)| {
                 let i = start + k;
                 let (corner, xi) = grid.locate(x);

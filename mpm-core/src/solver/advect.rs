@@ -17,14 +17,14 @@ impl<const D: usize> Solver<D> {
         let bounds = watchdog.map(|w| w.bounds_at(self.time));
         let p = &mut self.particles;
         let s = &self.scratch;
-        let n = p.len();
+        let whole = grain::light(p.len());
         let failure = p
             .position
             .par_iter_mut()
             .zip(s.grid_velocity.par_iter())
             .zip(p.velocity.par_iter())
             .enumerate()
-            .with_min_len(grain::light(n, n))
+            .with_min_len(whole)
             .filter_map(|(i, ((x, vg), v))| {
                 *x += vg * dt;
                 if !x.iter().all(|c| c.is_finite()) {

@@ -58,7 +58,7 @@ impl<const D: usize> Solver<D> {
                 let turn = (later.rotation - pose.rotation).norm();
                 let max_speed = *max_speed.get_or_insert_with(|| {
                     (p.velocity.par_iter())
-                        .with_min_len(grain::light(p.len(), p.len()))
+                        .with_min_len(grain::light(p.len()))
                         .map(|v| v.norm())
                         .reduce(|| 0.0, f64::max)
                 });
@@ -68,7 +68,7 @@ impl<const D: usize> Solver<D> {
                     + turn * reach;
                 let candidates: Vec<usize> = (0..p.len())
                     .into_par_iter()
-                    .with_min_len(grain::light(p.len(), p.len()))
+                    .with_min_len(grain::light(p.len()))
                     .filter(|&i| {
                         let xb = pose.to_body(&p.position[i]);
                         match body.bounds {
@@ -84,7 +84,7 @@ impl<const D: usize> Solver<D> {
                 .candidates
                 .par_iter()
                 .zip(c.attachment.par_iter_mut())
-                .with_min_len(grain::light(p.len(), c.candidates.len()))
+                .with_min_len(grain::light(p.len()))
                 .map(|(&i, a)| {
                     let point = Candidate {
                         x: &p.position[i],

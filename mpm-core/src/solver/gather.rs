@@ -116,7 +116,7 @@ impl<const D: usize> Solver<D> {
             let grain = if deformation {
                 1
             } else {
-                grain::light(p.len(), r.len())
+                grain::light(p.len())
             };
             let update = Deformation {
                 material: &*block.material,

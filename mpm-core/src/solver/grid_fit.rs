@@ -69,7 +69,7 @@ impl<const D: usize> Solver<D> {
         let x = &self.particles.position;
         let (lo, hi) = x
             .par_iter()
-            .with_min_len(grain::light(x.len(), x.len()))
+            .with_min_len(grain::light(x.len()))
             .fold(
                 || {
                     (
@@ -114,7 +114,7 @@ impl<const D: usize> Solver<D> {
             return (Reach::CELL, 0.0, first);
         }
         let (p, inv_h) = (&self.particles, &self.grid.inv_spacing);
-        let whole = grain::light(p.len(), range.len());
+        let whole = grain::light(p.len());
         let (extent, widest) = range
             .into_par_iter()
             .with_min_len(whole)

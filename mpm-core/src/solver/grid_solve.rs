@@ -100,7 +100,7 @@ impl<const D: usize> Solver<D> {
                 .collect(),
         };
         let meta = self.grid.clone_meta();
-        let whole = grain::light(self.particles.len(), self.grid.nodes.len().div_ceil(CHUNK));
+        let whole = grain::light(self.particles.len());
         let work: Vec<ChunkWork> = self
             .grid
             .nodes

@@ -82,7 +82,7 @@ impl<const D: usize> Solver<D> {
                 body_force: self.settings.body_force,
                 kinematics: self.settings.kinematics,
             };
-            let whole = grain::light(self.particles.len(), parts.len());
+            let whole = grain::light(self.particles.len());
             parts
                 .into_par_iter()
                 .with_min_len(whole)
@@ -98,7 +98,7 @@ impl<const D: usize> Solver<D> {
     }
 
     fn clear_nodes(&mut self, t: Transfer) {
-        let whole = grain::light(self.particles.len(), self.grid.nodes.len());
+        let whole = grain::light(self.particles.len());
         self.grid
             .nodes
             .par_iter_mut()

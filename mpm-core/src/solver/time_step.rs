@@ -55,7 +55,7 @@ impl<const D: usize> Solver<D> {
                 let c = b.wave_speed();
                 v[b.range.clone()]
                     .par_iter()
-                    .with_min_len(grain::light(v.len(), b.range.len()))
+                    .with_min_len(grain::light(v.len()))
                     .map(|v| c + v.norm())
                     .reduce(|| 0.0, f64::max)
             })
