@@ -112,11 +112,11 @@ impl<const D: usize> Solver<D> {
         let mut first_failure: Option<(usize, Cause)> = None;
         for block in &mut self.blocks {
             let r = block.range.clone();
-            // the material update is always split; a velocity update alone is light
-            let grain = if deformation {
-                1
+            // the material update is always split, finely; a velocity update alone is light
+            let (least, most) = if deformation {
+                (1, grain::MATERIAL_PIECE)
             } else {
-                grain::light(p.len())
+                (grain::light(p.len()), usize::MAX)
             };
             let update = Deformation {
                 material: &*block.material,
@@ -143,7 +143,8 @@ impl<const D: usize> Solver<D> {
             )
                 .into_par_iter()
                 .enumerate()
-                .with_min_len(grain)
+                .with_min_len(least)
+                .with_max_len(most)
                 .filter_map(
                     |(j, (x, x_ref, v, v0, volume, f, sigma, state, v_grid, work))| {
                         let i = r.start + j;
