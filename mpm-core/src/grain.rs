@@ -13,7 +13,7 @@ pub const LIGHT_PARALLEL_FROM: usize = 20_000;
 /// The largest piece of the material update. Its cost is uneven (a plastic return costs
 /// 5-10 elastic updates) and clustered (the plastic zone of a Taylor bar is its impact
 /// end), so the few large pieces of rayon's adaptive split leave one thread with most of
-/// the plastic points; pieces of 128 points (10-80 µs) let an idle thread steal the rest.
+/// the plastic points; pieces of 128 points (8-90 µs) let an idle thread steal the rest.
 /// Axisymmetric Taylor bar, 2 940 points, 2 threads: material stage 724 → 656 µs per step
 /// (597 µs is half the 1-thread time); 512 points gave 677 µs, 32 points 656 µs.
 pub const MATERIAL_PIECE: usize = 128;
