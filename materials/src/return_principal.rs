@@ -24,7 +24,7 @@ use nalgebra::{Matrix3, SVector, Vector3};
 /// The error left, O(step²) ≈ 1e-3 in ln Δα, is no larger than the guess's own error (it
 /// solves a linearized return), and the 4×4 Newton removes both in two evaluations, rarely
 /// three. Per return of the OFHC Taylor bar (bench (c)): 2.42 scalar steps and 2.01
-/// evaluations at a tolerance of 1e-3, 1.49 and 2.16 at 5e-2; 1 thread 2.05 → 2.11 M
+/// evaluations at a tolerance of 1e-3, 1.49 and 2.16 at 5e-2; 1 thread 2.05 → 2.10 M
 /// particle-steps/s, JC plastic step at first yield 687 → 634 ns (0.2: 2.08 M).
 const SCALAR_GUESS_STEPS: usize = 12;
 const SCALAR_GUESS_TOL: f64 = 5e-2;
@@ -171,9 +171,9 @@ pub fn solve(
 /// `previous` (where it is > 0): the rate-free (q^tr − τ_y0)/(3G̃), and the increment whose
 /// JC rate term alone takes up q^tr/τ_y0. At MPM time steps the second is within ≈ 0.5 of
 /// the root and the first 2-4 away; a point in flow is within a few percent of its
-/// previous increment (steps per return: see `SCALAR_GUESS_TOL`). q^tr − τ_y(Δα) is a small difference of large
-/// numbers, so q^tr must be the Neo-Hooke value: a log-strain (Hencky) estimate is off by
-/// O(ε_e) in q and by percents in Δα.
+/// previous increment (steps per return: see `SCALAR_GUESS_TOL`). q^tr − τ_y(Δα) is a
+/// small difference of large numbers, so q^tr must be the Neo-Hooke value: a log-strain
+/// (Hencky) estimate is off by O(ε_e) in q and by percents in Δα.
 fn first_guess(
     problem: &Problem,
     b_trial: &Vector3<f64>,

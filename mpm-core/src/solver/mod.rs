@@ -26,10 +26,6 @@ pub use scheme::{Scheme, Stage};
 pub use settings::Settings;
 pub use time_step::TimeStepChange;
 
-/// Wall time per stage of a scheme, summed over the steps of `Solver::step_timed`.
-#[derive(Debug, Clone, Default)]
-pub struct StageTimes(pub Vec<(Stage, Duration)>);
-
 use crate::boundary::{SpringBc, VelocityBc};
 use crate::contact::ContactState;
 use crate::failure::{Cause, SimulationError};
@@ -48,6 +44,10 @@ use materials::Material;
 use nalgebra::SVector;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
+
+/// Wall time per stage of a scheme, summed over the steps of `Solver::step_timed`.
+#[derive(Debug, Clone, Default)]
+pub struct StageTimes(pub Vec<(Stage, Duration)>);
 
 /// A rigid body and its contact state.
 #[derive(Clone)]
