@@ -1,7 +1,7 @@
 //! A model chosen at run time (from a parameter file), still generic over the scalar.
 
 use crate::error::MaterialError;
-use crate::material::{Model, State};
+use crate::material::{Deliver, Model, State};
 use crate::neo_hooke::NeoHooke;
 use crate::plasticity::ElastoPlastic;
 use crate::scalar::Scalar;
@@ -53,5 +53,8 @@ impl<D: Scalar> Model<D> for AnyModel<D> {
         old: &State<D>,
     ) -> Result<(M3<D>, State<D>), MaterialError> {
         each!(self, m => m.update(f, dt, old))
+    }
+    fn update_batch(&self, f: &[M3<D>], dt: f64, old: &[State<D>], deliver: &mut Deliver<D>) {
+        each!(self, m => m.update_batch(f, dt, old, deliver))
     }
 }

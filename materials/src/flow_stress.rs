@@ -6,8 +6,10 @@
 //!   term clamped to ≥ 1 (α̇ < α̇0 counts as α̇0) and θ* = (θ − θ0)/(θm − θ0) clamped to
 //!   [0, 1], as common explicit codes do.
 
+use crate::lanes::{pack, select, Lane, Mask};
 use crate::parameter_set;
 use crate::scalar::{c, Scalar};
+use simba::simd::SimdBool;
 
 parameter_set! {
     /// Eq. 4.51 parameters.
@@ -120,25 +122,26 @@ impl<D: Scalar> FlowStress<D> {
 
 /// The flow stress at one plastic increment of a local solve (see `LogIncrementPath`).
 #[derive(Debug, Clone, Copy)]
-pub struct AtIncrement {
+pub struct AtIncrement<L = f64> {
     /// Δα = e^u [-]
-    pub dalpha: f64,
+    pub dalpha: L,
     /// τ_y [Pa]
-    pub tau_y: f64,
+    pub tau_y: L,
     /// dτ_y/du [Pa]
-    pub dtau_y_du: f64,
+    pub dtau_y_du: L,
 }
 
 /// The flow stress at the start of a step, τ_y0 = τ_y(α_n, 0, θ_n) [Pa], which decides
-/// whether a trial state yields, and the parts of it that a return reuses.
-#[derive(Debug, Clone, Copy)]
-pub struct Onset {
-    pub tau_y0: f64,
-    alpha_n: f64,
+/// whether a trial state yields, and the parts of it that a return reuses (one point, or
+/// one per lane: `Onset::pack`).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Onset<L = f64> {
+    pub tau_y0: L,
+    alpha_n: L,
     /// α_n^N (JC with α_n > 0, else 0).
-    alpha_n_pow: f64,
+    alpha_n_pow: L,
     /// 1 − θ*^M at θ_n (1 for Voce).
-    thermal: f64,
+    thermal: L,
 }
 
 impl FlowStress<f64> {
@@ -165,20 +168,33 @@ impl FlowStress<f64> {
     }
 }
 
+impl<L: Lane> Onset<L> {
+    /// The onsets of the points of a batch, lane `i` from `point(i)`.
+    pub fn pack(point: impl Fn(usize) -> Onset) -> Self {
+        Onset {
+            tau_y0: pack(|i| point(i).tau_y0),
+            alpha_n: pack(|i| point(i).alpha_n),
+            alpha_n_pow: pack(|i| point(i).alpha_n_pow),
+            thermal: pack(|i| point(i).thermal),
+        }
+    }
+}
+
 /// The flow stress along the local solve of one return, in u = ln Δα
 /// (`return_principal`'s hot path): α = α_n + e^u, α̇ = e^u/Δt and θ = θ_n frozen, so the
 /// thermal factor is given once and the JC rate term 1 + C (u − ln(Δt α̇0)) needs no
-/// logarithm. `at` equals `FlowStress::tau_y` to round-off (tested).
+/// logarithm. `at` equals `FlowStress::tau_y` to round-off (tested). Lane by lane for a
+/// batch of points with one law and one Δt.
 #[derive(Debug, Clone, Copy)]
-pub struct LogIncrementPath<'a> {
+pub struct LogIncrementPath<'a, L = f64> {
     flow: &'a FlowStress<f64>,
-    alpha_n: f64,
+    alpha_n: L,
     /// ln(Δt α̇0), the JC rate kink (0 for Voce).
     ln_dalpha0: f64,
     /// 1 − θ*^M at θ_n.
-    thermal: f64,
+    thermal: L,
     /// α^N = α_n^N (1 + x)^N with x = Δα/α_n, by its binomial series where that is exact.
-    power: SeriesPower,
+    power: SeriesPower<L>,
 }
 
 /// Terms of the binomial series after the constant one.
@@ -204,65 +220,76 @@ const INV_COUNT: [f64; SERIES_TERMS + 1] = [
 /// half an ulp: Δα/α_n up to 0.05 at N = 0.31. A plastic step of a point in flow has
 /// Δα/α_n ~ 1e-4..1e-2, so `powf` is left for first yield and the first steps of flow.
 #[derive(Debug, Clone, Copy)]
-struct SeriesPower {
-    alpha_n: f64,
-    alpha_n_inv: f64,
+struct SeriesPower<L> {
+    alpha_n: L,
+    alpha_n_inv: L,
     /// α_n^N (0 where the series is not used).
-    alpha_n_pow: f64,
+    alpha_n_pow: L,
     /// Binomial coefficients (N choose k), k = 1..=10.
     coefficients: [f64; SERIES_TERMS],
     /// |N choose 11|, the first omitted coefficient (infinite where the series is not
     /// used).
-    omitted: f64,
+    omitted: L,
 }
 
-impl SeriesPower {
+impl<L: Lane> SeriesPower<L> {
     /// The series about `alpha_n` with `alpha_n_pow` = α_n^N.
-    fn new(alpha_n: f64, alpha_n_pow: f64, n: f64) -> Self {
+    fn new(alpha_n: L, alpha_n_pow: L, n: f64) -> Self {
         let mut coefficients = [0.0; SERIES_TERMS];
         let mut c = 1.0;
         for (k, slot) in coefficients.iter_mut().enumerate() {
             c *= (n - k as f64) * INV_COUNT[k];
             *slot = c;
         }
-        let usable = alpha_n > 0.0 && n < (SERIES_TERMS + 1) as f64;
+        let omitted = if n < (SERIES_TERMS + 1) as f64 {
+            (c * (n - SERIES_TERMS as f64) * INV_COUNT[SERIES_TERMS]).abs()
+        } else {
+            f64::INFINITY
+        };
+        let usable = alpha_n.simd_gt(L::splat(0.0));
         SeriesPower {
             alpha_n,
-            alpha_n_inv: 1.0 / alpha_n,
+            alpha_n_inv: L::splat(1.0) / alpha_n,
             alpha_n_pow,
             coefficients,
-            omitted: if usable {
-                (c * (n - SERIES_TERMS as f64) * INV_COUNT[SERIES_TERMS]).abs()
-            } else {
-                f64::INFINITY
-            },
+            omitted: select(usable, L::splat(omitted), L::splat(f64::INFINITY)),
         }
     }
 
-    /// Whether the series is exact to round-off at x = Δα/α_n ≥ 0.
-    fn converged(&self, x: f64) -> bool {
-        self.omitted * x.powi(SERIES_TERMS as i32 + 1) <= 0.5 * f64::EPSILON
+    /// Where the series is exact to round-off at x = Δα/α_n ≥ 0.
+    fn converged(&self, x: L) -> Mask<L> {
+        let x2 = x * x;
+        let x4 = x2 * x2;
+        let x11 = x4 * x4 * x2 * x;
+        (self.omitted * x11).simd_le(L::splat(0.5 * f64::EPSILON))
     }
 
     /// α^N at α = α_n + `dalpha`.
-    fn at(&self, dalpha: f64, n: f64) -> f64 {
+    fn at(&self, dalpha: L, n: f64) -> L {
         let x = dalpha * self.alpha_n_inv;
-        if self.converged(x) {
+        let converged = self.converged(x);
+        let series = || {
             let tail = self
                 .coefficients
                 .iter()
                 .rev()
-                .fold(0.0, |acc, c| (acc + c) * x);
-            self.alpha_n_pow * (1.0 + tail)
+                .fold(L::splat(0.0), |acc, &c| (acc + L::splat(c)) * x);
+            self.alpha_n_pow * (L::splat(1.0) + tail)
+        };
+        let power = || (self.alpha_n + dalpha).simd_powf(L::splat(n));
+        if converged.all() {
+            series()
+        } else if converged.none() {
+            power()
         } else {
-            (self.alpha_n + dalpha).powf(n)
+            select(converged, series(), power())
         }
     }
 }
 
-impl<'a> LogIncrementPath<'a> {
+impl<'a, L: Lane> LogIncrementPath<'a, L> {
     /// The path from the `onset` state over a step `dt` [s].
-    pub fn new(flow: &'a FlowStress<f64>, onset: &Onset, dt: f64) -> Self {
+    pub fn new(flow: &'a FlowStress<f64>, onset: &Onset<L>, dt: f64) -> Self {
         let (ln_dalpha0, n) = match flow {
             FlowStress::JohnsonCook(p) => ((dt * p.alpha_dot0).ln(), p.n),
             FlowStress::Voce(_) => (0.0, f64::INFINITY),
@@ -277,27 +304,26 @@ impl<'a> LogIncrementPath<'a> {
     }
 
     /// Δα, τ_y and dτ_y/du at u = ln Δα.
-    pub fn at(&self, u: f64) -> AtIncrement {
-        let dalpha = u.exp();
+    pub fn at(&self, u: L) -> AtIncrement<L> {
+        let dalpha = u.simd_exp();
         let alpha = self.alpha_n + dalpha;
         let (tau_y, dtau_y_du) = match self.flow {
             FlowStress::Voce(p) => {
-                let decay = (p.tau0 - p.tau_inf) * (-p.eta * alpha).exp();
+                let decay = L::splat(p.tau0 - p.tau_inf) * (L::splat(-p.eta) * alpha).simd_exp();
                 (
-                    p.tau_inf + decay + p.h * alpha,
-                    dalpha * (p.h - p.eta * decay),
+                    L::splat(p.tau_inf) + decay + L::splat(p.h) * alpha,
+                    dalpha * (L::splat(p.h) - L::splat(p.eta) * decay),
                 )
             }
             FlowStress::JohnsonCook(p) => {
                 let alpha_pow_n = self.power.at(dalpha, p.n);
-                let hardening = p.a + p.b * alpha_pow_n;
-                let d_hardening = p.b * p.n * alpha_pow_n / alpha * dalpha;
-                let excess = u - self.ln_dalpha0;
-                let (rate, d_rate) = if excess > 0.0 {
-                    (1.0 + p.c * excess, p.c)
-                } else {
-                    (1.0, 0.0)
-                };
+                let hardening = L::splat(p.a) + L::splat(p.b) * alpha_pow_n;
+                let d_hardening = L::splat(p.b * p.n) * alpha_pow_n / alpha * dalpha;
+                let excess = u - L::splat(self.ln_dalpha0);
+                let flowing = excess.simd_gt(L::splat(0.0));
+                let one = L::splat(1.0);
+                let rate = select(flowing, one + L::splat(p.c) * excess, one);
+                let d_rate = select(flowing, L::splat(p.c), L::splat(0.0));
                 (
                     hardening * rate * self.thermal,
                     (d_hardening * rate + hardening * d_rate) * self.thermal,
@@ -315,10 +341,10 @@ impl<'a> LogIncrementPath<'a> {
     /// q/τ_y0 > 1 of a trial state (τ_y0 = τ_y(α_n, 0, θ_n)): 1 + C (u − ln(Δt α̇0)) = q/τ_y0.
     /// Hardening and the elastic relaxation q − 3G̃ Δα only lower the root of the return,
     /// so this bounds its ln Δα from above. `None` for a law without a rate term.
-    pub fn rate_only_bound(&self, overstress: f64) -> Option<f64> {
+    pub fn rate_only_bound(&self, overstress: L) -> Option<L> {
         match self.flow {
             FlowStress::JohnsonCook(p) if p.c > 0.0 => {
-                Some(self.ln_dalpha0 + (overstress - 1.0) / p.c)
+                Some(L::splat(self.ln_dalpha0) + (overstress - L::splat(1.0)) / L::splat(p.c))
             }
             _ => None,
         }
@@ -385,10 +411,10 @@ mod tests {
     #[test]
     fn series_power_is_exact_to_round_off() {
         for n in [0.09, 0.31, 0.5, 0.83, 1.0, 1.7] {
-            let power = SeriesPower::new(1.0, 1.0, n);
+            let power = SeriesPower::<f64>::new(1.0, 1.0, n);
             assert!(power.converged(0.02), "N {n}: series not used at 0.02");
             for alpha_n in [1e-3, 0.05, 1.2] {
-                let power = SeriesPower::new(alpha_n, alpha_n.powf(n), n);
+                let power = SeriesPower::<f64>::new(alpha_n, alpha_n.powf(n), n);
                 for x in [1e-9, 1e-6, 1e-4, 1e-3, 0.01, 0.02, 0.04, 0.08, 0.3] {
                     let dalpha = x * alpha_n;
                     let exact = (alpha_n + dalpha).powf(n);
@@ -400,7 +426,7 @@ mod tests {
                 }
             }
         }
-        let virgin = SeriesPower::new(0.0, 0.0, 0.31);
+        let virgin = SeriesPower::<f64>::new(0.0, 0.0, 0.31);
         assert_eq!(virgin.at(1e-4, 0.31), 1e-4f64.powf(0.31));
     }
 

@@ -12,6 +12,7 @@ pub mod elastic;
 pub mod error;
 pub mod expm;
 pub mod flow_stress;
+pub mod lanes;
 pub mod limits;
 pub mod local_newton;
 pub mod material;

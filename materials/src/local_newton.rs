@@ -7,7 +7,9 @@
 //! step in u can be astronomically large.
 
 use crate::error::MaterialError;
+use crate::lanes::{lane, none, select, Lane, Mask, MAX_LANES};
 use nalgebra::{Const, DimMin, SMatrix, SVector};
+use simba::simd::SimdBool;
 
 /// Converged when the scaled residual is below this.
 pub const TOL: f64 = 1e-13;
@@ -19,76 +21,149 @@ pub const MAX_LOG_STEP: f64 = 5.0;
 pub const CONVERGED_STEP: f64 = 1e-7;
 
 /// ∂r/∂x of a local problem: whatever solves J dx = b (a dense matrix by LU, or a
-/// structured one by its own elimination).
-pub trait Jacobian<const N: usize> {
-    fn solve(&self, b: &SVector<f64, N>) -> Option<SVector<f64, N>>;
+/// structured one by its own elimination), for one point or a batch in lanes.
+pub trait Jacobian<L: Lane, const N: usize>: Copy {
+    /// J⁻¹ b, and the lanes where J is regular (the others hold no number).
+    fn solve(&self, b: &SVector<L, N>) -> (SVector<L, N>, Mask<L>);
+    /// `self` in the lanes of `mask`, `other` in the rest.
+    fn select(self, mask: Mask<L>, other: Self) -> Self;
 }
 
-impl<const N: usize> Jacobian<N> for SMatrix<f64, N, N>
+impl<const N: usize> Jacobian<f64, N> for SMatrix<f64, N, N>
 where
     Const<N>: DimMin<Const<N>, Output = Const<N>>,
 {
-    fn solve(&self, b: &SVector<f64, N>) -> Option<SVector<f64, N>> {
-        self.lu().solve(b)
+    fn solve(&self, b: &SVector<f64, N>) -> (SVector<f64, N>, bool) {
+        match self.lu().solve(b) {
+            Some(x) => (x, true),
+            None => (SVector::zeros(), false),
+        }
+    }
+
+    fn select(self, mask: bool, other: Self) -> Self {
+        if mask {
+            self
+        } else {
+            other
+        }
     }
 }
 
 /// Solve r(x) = 0 from `x0`, whose last component is u = ln Δα. `eval` returns r and
 /// ∂r/∂x. Returns the root.
-pub fn solve<const N: usize, J: Jacobian<N>>(
-    mut eval: impl FnMut(&SVector<f64, N>) -> (SVector<f64, N>, J),
+pub fn solve<const N: usize, J: Jacobian<f64, N>>(
+    eval: impl FnMut(&SVector<f64, N>) -> (SVector<f64, N>, J),
     x0: SVector<f64, N>,
 ) -> Result<SVector<f64, N>, MaterialError> {
-    let mut x = x0;
+    let Roots { x, failures } = solve_lanes(eval, x0);
+    match failures {
+        [Some(error), ..] => Err(error),
+        _ => Ok(x),
+    }
+}
+
+/// The roots of a batch, and the failure of each lane that has none.
+pub struct Roots<L: Lane, const N: usize> {
+    pub x: SVector<L, N>,
+    pub failures: [Option<MaterialError>; MAX_LANES],
+}
+
+/// `solve` for the lanes of a batch in lockstep: each lane takes the steps it would take
+/// alone, and is frozen from the iteration where it ends (converged or failed), so its
+/// root does not depend on the other lanes.
+pub fn solve_lanes<L: Lane, const N: usize, J: Jacobian<L, N>>(
+    mut eval: impl FnMut(&SVector<L, N>) -> (SVector<L, N>, J),
+    x0: SVector<L, N>,
+) -> Roots<L, N> {
+    let tol = L::splat(TOL);
+    let mut failures: [Option<MaterialError>; MAX_LANES] = Default::default();
+    let mut fail = |mask: Mask<L>, error: &dyn Fn(usize) -> MaterialError| {
+        for (i, slot) in failures.iter_mut().enumerate().take(L::LANES) {
+            if lane::<L>(mask, i) {
+                *slot = Some(error(i));
+            }
+        }
+    };
+    let (mut x, mut root) = (x0, x0);
     let (mut r, mut k) = eval(&x);
+    let mut active = !none::<L>();
     for _ in 0..MAX_ITERATIONS {
         let r_norm = r.amax();
-        if !r_norm.is_finite() {
-            return Err(MaterialError::NonFinite {
-                what: "local residual",
-            });
+        let non_finite = active & !finite(r_norm);
+        fail(non_finite, &|_| MaterialError::NonFinite {
+            what: "local residual",
+        });
+        let converged = active & !non_finite & r_norm.simd_lt(tol);
+        root = select_vector(converged, &x, &root);
+        active = active & !non_finite & !converged;
+        if !active.any() {
+            break;
         }
-        if r_norm < TOL {
-            return Ok(x);
-        }
-        let dx = k.solve(&(-r)).ok_or(MaterialError::Singular {
+        let (dx, regular) = k.solve(&(-r));
+        let singular = active & !regular;
+        fail(singular, &|_| MaterialError::Singular {
             what: "return mapping",
-        })?;
-        if dx.amax() < CONVERGED_STEP {
-            // Quadratic convergence: the residual after this step is O(|dx|²), below
-            // TOL, so it need not be evaluated.
-            return Ok(x + dx);
+        });
+        active = active & regular;
+        let dx_norm = dx.amax();
+        let small = active & dx_norm.simd_lt(L::splat(CONVERGED_STEP));
+        root = select_vector(small, &(x + dx), &root);
+        active = active & !small;
+        if !active.any() {
+            break;
         }
-        let mut step = (MAX_LOG_STEP / dx[N - 1].abs()).min(1.0);
-        let mut accepted = false;
+        let mut step = (L::splat(MAX_LOG_STEP) / dx[N - 1].simd_abs()).simd_min(L::splat(1.0));
+        let mut searching = active;
         for _ in 0..12 {
             let trial = x + dx * step;
             let (r_t, k_t) = eval(&trial);
-            if r_t.amax() < r_norm * (1.0 - 1e-4 * step) || r_t.amax() < TOL {
-                x = trial;
-                r = r_t;
-                k = k_t;
-                accepted = true;
+            let r_t_norm = r_t.amax();
+            let decrease = r_norm * (L::splat(1.0) - L::splat(1e-4) * step);
+            let accept = searching & (r_t_norm.simd_lt(decrease) | r_t_norm.simd_lt(tol));
+            x = select_vector(accept, &trial, &x);
+            r = select_vector(accept, &r_t, &r);
+            k = k_t.select(accept, k);
+            searching = searching & !accept;
+            if !searching.any() {
                 break;
             }
-            step *= 0.5;
+            step = select(searching, step * L::splat(0.5), step);
         }
-        if !accepted {
-            // No decrease is possible: the residual sits at round-off level.
-            if dx.amax() < 1e-12 {
-                return Ok(x);
-            }
-            return Err(MaterialError::ReturnMapNotConverged {
+        // no step was accepted: a stalled solve that has stopped moving is converged
+        let stopped = searching & dx_norm.simd_lt(L::splat(1e-12));
+        root = select_vector(stopped, &x, &root);
+        fail(searching & !stopped, &|i| {
+            MaterialError::ReturnMapNotConverged {
                 iterations: MAX_ITERATIONS,
-                residual: r_norm,
-            });
-        }
-        if (dx * step).amax() < 1e-15 {
-            return Ok(x);
+                residual: r_norm.extract(i),
+            }
+        });
+        active = active & !searching;
+        let still = active & (dx * step).amax().simd_lt(L::splat(1e-15));
+        root = select_vector(still, &x, &root);
+        active = active & !still;
+        if !active.any() {
+            break;
         }
     }
-    Err(MaterialError::ReturnMapNotConverged {
+    let r_norm = r.amax();
+    fail(active, &|i| MaterialError::ReturnMapNotConverged {
         iterations: MAX_ITERATIONS,
-        residual: r.amax(),
-    })
+        residual: r_norm.extract(i),
+    });
+    Roots { x: root, failures }
+}
+
+/// The lanes where `x` is a finite number.
+fn finite<L: Lane>(x: L) -> Mask<L> {
+    (x - x).simd_eq(L::splat(0.0))
+}
+
+/// `a` in the lanes of `mask`, `b` in the rest.
+pub fn select_vector<L: Lane, const R: usize, const C: usize>(
+    mask: Mask<L>,
+    a: &SMatrix<L, R, C>,
+    b: &SMatrix<L, R, C>,
+) -> SMatrix<L, R, C> {
+    a.zip_map(b, |a, b| select(mask, a, b))
 }

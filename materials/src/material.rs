@@ -48,6 +48,9 @@ impl<D: Scalar> State<D> {
 }
 
 /// A material model written once for any scalar `D` (real or dual).
+/// Receives the update of point i of a batch: (σ, new state) or its failure.
+pub type Deliver<'a, D = f64> = dyn FnMut(usize, Result<(M3<D>, State<D>), MaterialError>) + 'a;
+
 pub trait Model<D: Scalar>: Clone + Send + Sync {
     /// The same model with parameters of another scalar type.
     type With<E: Scalar>: Model<E>;
@@ -78,6 +81,15 @@ pub trait Model<D: Scalar>: Clone + Send + Sync {
         dt: f64,
         old: &State<D>,
     ) -> Result<(M3<D>, State<D>), MaterialError>;
+
+    /// `update` of many points at once: `deliver(i, result)` for point i of `f` and `old`
+    /// (same length), in any order. Models that can solve several points in lockstep
+    /// override it; each result equals `update`'s.
+    fn update_batch(&self, f: &[M3<D>], dt: f64, old: &[State<D>], deliver: &mut Deliver<D>) {
+        for (i, (f, old)) in f.iter().zip(old).enumerate() {
+            deliver(i, self.update(f, dt, old));
+        }
+    }
 }
 
 /// Object-safe, real-valued view of a model, as the MPM solver uses it.
@@ -91,6 +103,18 @@ pub trait Material: Send + Sync {
         dt: f64,
         old: &State<f64>,
     ) -> Result<(Matrix3<f64>, State<f64>), MaterialError>;
+    /// Many points at once (`Model::update_batch`; one by one unless overridden).
+    fn update_batch(
+        &self,
+        f: &[Matrix3<f64>],
+        dt: f64,
+        old: &[State<f64>],
+        deliver: &mut Deliver<'_>,
+    ) {
+        for (i, (f, old)) in f.iter().zip(old).enumerate() {
+            deliver(i, self.update(f, dt, old));
+        }
+    }
 }
 
 impl<T: Model<f64>> Material for T {
@@ -110,5 +134,14 @@ impl<T: Model<f64>> Material for T {
         old: &State<f64>,
     ) -> Result<(Matrix3<f64>, State<f64>), MaterialError> {
         Model::update(self, f, dt, old)
+    }
+    fn update_batch(
+        &self,
+        f: &[Matrix3<f64>],
+        dt: f64,
+        old: &[State<f64>],
+        deliver: &mut Deliver<'_>,
+    ) {
+        Model::update_batch(self, f, dt, old, deliver)
     }
 }

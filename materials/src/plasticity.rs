@@ -18,12 +18,14 @@
 
 use crate::elastic::Elastic;
 use crate::error::MaterialError;
-use crate::flow_stress::FlowStress;
-use crate::material::{Model, State};
+use crate::flow_stress::{FlowStress, Onset};
+use crate::lanes::MAX_LANES;
+use crate::material::{Deliver, Model, State};
 use crate::parameter_set;
+use crate::return_principal::{self, Yielding};
+use crate::return_reference;
 use crate::scalar::{c, Scalar};
 use crate::tensor::{det, lift, re, von_mises, M3};
-use crate::{return_principal, return_reference};
 
 parameter_set! {
     /// Thermal constants (eq. 4.22-4.23, 4.50).
@@ -129,49 +131,143 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
         dt: f64,
         old: &State<D>,
     ) -> Result<(M3<D>, State<D>), MaterialError> {
+        let (onset, phi_trial) = match self.trial(f, old) {
+            Trial::Done(result) => return result,
+            Trial::Yields { onset, phi_trial } => (onset, phi_trial),
+        };
+        let (model, old_re, f_re) = (self.re(), old.re(), re(f));
+        // (Fp⁻¹, α) in real arithmetic, and τ where the return gives it.
+        let real = match self.return_map {
+            ReturnMap::Reference => {
+                // Perfectly plastic estimate of Δα (radial return with 3G) as the first guess.
+                let dalpha0 = phi_trial / (3.0 * model.elastic.shear_modulus());
+                let (fp_inv, alpha) = return_reference::solve(&model, &f_re, &old_re, dt, dalpha0)?;
+                RealReturn {
+                    fp_inv,
+                    alpha,
+                    tau: None,
+                }
+            }
+            ReturnMap::Principal => {
+                return_principal::solve(&model, &f_re, &old_re, dt, &onset)?.into()
+            }
+        };
+        self.after_return(f, dt, old, real)
+    }
+
+    /// The principal return four points at a time (`return_principal::solve_batch`); one
+    /// at a time for dual scalars and the reference return.
+    fn update_batch(&self, f: &[M3<D>], dt: f64, old: &[State<D>], deliver: &mut Deliver<D>) {
+        if D::NDERIV > 0 || self.return_map == ReturnMap::Reference {
+            for (i, (f, old)) in f.iter().zip(old).enumerate() {
+                deliver(i, self.update(f, dt, old));
+            }
+            return;
+        }
+        let model = self.re();
+        let mut group = YieldingGroup::default();
+        for (i, (f_i, old_i)) in f.iter().zip(old).enumerate() {
+            match self.trial(f_i, old_i) {
+                Trial::Done(result) => deliver(i, result),
+                Trial::Yields { onset, .. } => {
+                    group.push(i, re(f_i), old_i.re(), onset);
+                    if group.len == MAX_LANES {
+                        self.return_group(&model, &mut group, f, dt, old, deliver);
+                    }
+                }
+            }
+        }
+        if group.len > 0 {
+            self.return_group(&model, &mut group, f, dt, old, deliver);
+        }
+    }
+}
+
+/// What the trial state decides.
+enum Trial<D> {
+    /// Elastic (or failed): the update's result.
+    Done(Result<(M3<D>, State<D>), MaterialError>),
+    /// Yields: its onset of flow and φ^tr = τ_VM^tr − τ_y0 > 0 [Pa].
+    Yields { onset: Onset, phi_trial: f64 },
+}
+
+/// A return in real arithmetic: Fp⁻¹, α, and τ where the return gives it.
+struct RealReturn {
+    fp_inv: M3<f64>,
+    alpha: f64,
+    tau: Option<M3<f64>>,
+}
+
+impl From<return_principal::Returned> for RealReturn {
+    fn from(r: return_principal::Returned) -> Self {
+        RealReturn {
+            fp_inv: r.fp_inv,
+            alpha: r.alpha,
+            tau: Some(r.tau),
+        }
+    }
+}
+
+/// Up to `MAX_LANES` yielding points of a batch, in real arithmetic, and their indices.
+#[derive(Default)]
+struct YieldingGroup {
+    len: usize,
+    index: [usize; MAX_LANES],
+    points: [Yielding; MAX_LANES],
+}
+
+impl YieldingGroup {
+    fn push(&mut self, index: usize, f: M3<f64>, old: State<f64>, onset: Onset) {
+        self.index[self.len] = index;
+        self.points[self.len] = Yielding { f, old, onset };
+        self.len += 1;
+    }
+}
+
+impl<D: Scalar> ElastoPlastic<D> {
+    /// The elastic trial state: its result if it does not yield.
+    #[inline(always)]
+    fn trial(&self, f: &M3<D>, old: &State<D>) -> Trial<D> {
         let j = det(f);
         if j.re() <= 0.0 || !j.re().is_finite() {
-            return Err(MaterialError::InvertedDeformation { det_f: j.re() });
+            return Trial::Done(Err(MaterialError::InvertedDeformation { det_f: j.re() }));
         }
         let fe_trial = f * old.fp_inv;
         let tau_trial = self.tau(&fe_trial, old.theta);
         // Yielding is decided in real arithmetic (φ^tr is not carried further).
-        let (model, old_re) = (self.re(), old.re());
-        let onset = model
-            .flow
-            .onset(old_re.alpha, old_re.theta, model.thermal.theta0);
+        let old_re = old.re();
+        let flow = self.flow.map(|_, v| v.re());
+        let onset = flow.onset(old_re.alpha, old_re.theta, self.thermal.theta0.re());
         let phi_trial = von_mises(&tau_trial).re() - onset.tau_y0;
         if phi_trial <= 0.0 {
             let new = State {
                 dalpha: c::<D>(0.0),
                 ..*old
             };
-            return Ok((tau_trial * j.recip(), new));
+            return Trial::Done(Ok((tau_trial * j.recip(), new)));
         }
-        let f_re = re(f);
-        // (Fp⁻¹, α) in real arithmetic, and τ where the return gives it.
-        let (fp_inv_re, alpha_re, tau_re) = match self.return_map {
-            ReturnMap::Reference => {
-                // Perfectly plastic estimate of Δα (radial return with 3G) as the first guess.
-                let dalpha0 = phi_trial / (3.0 * model.elastic.shear_modulus());
-                let (fp_inv, alpha) = return_reference::solve(&model, &f_re, &old_re, dt, dalpha0)?;
-                (fp_inv, alpha, None)
-            }
-            ReturnMap::Principal => {
-                let r = return_principal::solve(&model, &f_re, &old_re, dt, &onset)?;
-                (r.fp_inv, r.alpha, Some(r.tau))
-            }
-        };
+        Trial::Yields { onset, phi_trial }
+    }
+
+    /// The update from a return solved in real arithmetic: derivatives of dual scalars by
+    /// one implicit step, adiabatic heating, Cauchy stress.
+    fn after_return(
+        &self,
+        f: &M3<D>,
+        dt: f64,
+        old: &State<D>,
+        real: RealReturn,
+    ) -> Result<(M3<D>, State<D>), MaterialError> {
         let (fp_inv, alpha, tau) = if D::NDERIV == 0 {
-            let fp_inv = lift(&fp_inv_re);
-            let tau = match tau_re {
+            let fp_inv = lift(&real.fp_inv);
+            let tau = match real.tau {
                 Some(tau) => lift(&tau),
                 None => self.tau(&(f * fp_inv), old.theta),
             };
-            (fp_inv, c::<D>(alpha_re), tau)
+            (fp_inv, c::<D>(real.alpha), tau)
         } else {
             let (fp_inv, alpha) =
-                return_reference::implicit_step(self, f, old, dt, &fp_inv_re, alpha_re)?;
+                return_reference::implicit_step(self, f, old, dt, &real.fp_inv, real.alpha)?;
             (fp_inv, alpha, self.tau(&(f * fp_inv), old.theta))
         };
         let dalpha = alpha - old.alpha;
@@ -186,12 +282,31 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
             theta: old.theta + heating,
             dalpha,
         };
-        let sigma = tau * j.recip();
+        let sigma = tau * det(f).recip();
         if !sigma.iter().all(|s| s.re().is_finite()) {
             return Err(MaterialError::NonFinite {
                 what: "Cauchy stress",
             });
         }
         Ok((sigma, new))
+    }
+
+    /// The returns of a group of yielding points in lockstep, delivered as updates.
+    fn return_group(
+        &self,
+        model: &ElastoPlastic<f64>,
+        group: &mut YieldingGroup,
+        f: &[M3<D>],
+        dt: f64,
+        old: &[State<D>],
+        deliver: &mut Deliver<D>,
+    ) {
+        let points = &group.points[..group.len];
+        return_principal::solve_batch(model, points, dt, &mut |k, returned| {
+            let i = group.index[k];
+            let result = returned.and_then(|r| self.after_return(&f[i], dt, &old[i], r.into()));
+            deliver(i, result);
+        });
+        group.len = 0;
     }
 }

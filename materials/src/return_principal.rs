@@ -9,16 +9,24 @@
 //! The volumetric part ln J^e is unchanged (tr N = 0), so det Fp = 1 holds exactly, and
 //! the returned Kirchhoff stress is τ = Σ_a [G (b_a − 1) + p] v_a v_aᵀ (eq. 4.22 in the
 //! eigenbasis, b_a = e^{2ε_a}, p of ln J^e = Σ_a ε_a^tr): no second pass through Fe.
+//!
+//! The local problem (first guess, 4×4 Newton, flow ratios) is written once for a lane
+//! type (`lanes`): `solve` takes one point, `solve_batch` four in lockstep, with the same
+//! result to the bit. The eigen decomposition and the assembly of Fp⁻¹ and τ stay per
+//! point. A batch of four costs a plastic JC increment in flow 322 ns a point against
+//! 485 ns alone (`mpw bench`, SSE2 build, 2-core EPYC VM).
 
 use crate::error::MaterialError;
 use crate::flow_stress::{LogIncrementPath, Onset};
-use crate::local_newton::{self, Jacobian};
+use crate::lanes::{none, pack, select, F64x4, Lane, Mask, MAX_LANES};
+use crate::local_newton::{self, select_vector, Jacobian, Roots};
 use crate::material::State;
 use crate::near_one::{exp_small, ln_near_one};
 use crate::plasticity::ElastoPlastic;
-use crate::sym_eigen;
+use crate::sym_eigen::{self, SymEigen};
 use crate::tensor::{inverse, M3};
 use nalgebra::{Matrix3, SVector, Vector3};
+use simba::simd::SimdBool;
 
 /// Most scalar Newton steps of the first guess for ln Δα, and the step that ends them.
 /// The error left, O(step²) ≈ 1e-3 in ln Δα, is no larger than the guess's own error (it
@@ -29,44 +37,77 @@ use nalgebra::{Matrix3, SVector, Vector3};
 const SCALAR_GUESS_STEPS: usize = 12;
 const SCALAR_GUESS_TOL: f64 = 5e-2;
 
-/// The fixed data of one local problem.
-struct Problem<'a> {
+/// The fixed data of one local problem, a point per lane.
+struct Problem<'a, L> {
     g: f64,
     /// 1/G, which scales the yield-function row.
     g_inv: f64,
-    eps_trial: Vector3<f64>,
+    eps_trial: Vector3<L>,
     /// The flow stress along u = ln Δα.
-    path: LogIncrementPath<'a>,
+    path: LogIncrementPath<'a, L>,
 }
 
 /// The 4×4 Jacobian [[A, c], [dᵀ, e]]: the 3×3 block A = ∂r_ε/∂ε, bordered by the
 /// column c = ∂r_ε/∂u and the yield-function row (dᵀ, e). Solved by eliminating u
 /// (Schur complement e − dᵀA⁻¹c, nonzero: −dτ_y/du/G minus a positive term), with the
 /// closed-form 3×3 inverse; A = I + √(3/2) Δα ∂n/∂ε needs no pivoting.
-struct Bordered {
-    a: Matrix3<f64>,
-    c: Vector3<f64>,
-    d: Vector3<f64>,
-    e: f64,
+#[derive(Clone, Copy)]
+struct Bordered<L> {
+    a: Matrix3<L>,
+    c: Vector3<L>,
+    d: Vector3<L>,
+    e: L,
 }
 
-impl Jacobian<4> for Bordered {
-    fn solve(&self, b: &SVector<f64, 4>) -> Option<SVector<f64, 4>> {
-        let a_inv = inverse(&self.a)?;
+impl<L: Lane> Jacobian<L, 4> for Bordered<L> {
+    fn solve(&self, b: &SVector<L, 4>) -> (SVector<L, 4>, Mask<L>) {
+        let (a_inv, regular) = inverse_lanes(&self.a);
         let b_eps = Vector3::new(b[0], b[1], b[2]);
         let (y, w) = (a_inv * b_eps, a_inv * self.c);
         let schur = self.e - self.d.dot(&w);
-        if schur == 0.0 || !schur.is_finite() {
-            return None;
-        }
+        let zero = L::splat(0.0);
+        let regular = regular & schur.simd_ne(zero) & (schur - schur).simd_eq(zero);
         let du = (b[3] - self.d.dot(&y)) / schur;
         let x = y - w * du;
-        Some(SVector::<f64, 4>::new(x[0], x[1], x[2], du))
+        (SVector::<L, 4>::new(x[0], x[1], x[2], du), regular)
+    }
+
+    fn select(self, mask: Mask<L>, other: Self) -> Self {
+        Bordered {
+            a: select_vector(mask, &self.a, &other.a),
+            c: select_vector(mask, &self.c, &other.c),
+            d: select_vector(mask, &self.d, &other.d),
+            e: select(mask, self.e, other.e),
+        }
     }
 }
 
-impl<'a> Problem<'a> {
-    fn new(m: &'a ElastoPlastic<f64>, eps_trial: Vector3<f64>, onset: &Onset, dt: f64) -> Self {
+/// A⁻¹ by the adjugate (the operations of `tensor::inverse`), and the lanes where det A is
+/// a nonzero number.
+fn inverse_lanes<L: Lane>(a: &Matrix3<L>) -> (Matrix3<L>, Mask<L>) {
+    let m = |i: usize, j: usize| a[(i, j)];
+    let det = m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1))
+        - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0))
+        + m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0));
+    let zero = L::splat(0.0);
+    let regular = det.simd_ne(zero) & (det - det).simd_eq(zero);
+    let inv_det = L::splat(1.0) / det;
+    let cof = Matrix3::new(
+        m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1),
+        m(0, 2) * m(2, 1) - m(0, 1) * m(2, 2),
+        m(0, 1) * m(1, 2) - m(0, 2) * m(1, 1),
+        m(1, 2) * m(2, 0) - m(1, 0) * m(2, 2),
+        m(0, 0) * m(2, 2) - m(0, 2) * m(2, 0),
+        m(0, 2) * m(1, 0) - m(0, 0) * m(1, 2),
+        m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0),
+        m(0, 1) * m(2, 0) - m(0, 0) * m(2, 1),
+        m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0),
+    );
+    (cof * inv_det, regular)
+}
+
+impl<'a, L: Lane> Problem<'a, L> {
+    fn new(m: &'a ElastoPlastic<f64>, eps_trial: Vector3<L>, onset: &Onset<L>, dt: f64) -> Self {
         let g = m.elastic.shear_modulus();
         Problem {
             g,
@@ -79,33 +120,34 @@ impl<'a> Problem<'a> {
     /// Residual r(y) and its Jacobian, derived by hand (this is the hot path):
     /// ∂s_a/∂ε_b = 2G (b_a δ_ab − b_b/3), ∂‖s‖/∂ε_b = 2G n_b b_b (Σ n_a = 0),
     /// ∂n_a/∂ε_b = (∂s_a/∂ε_b − n_a ∂‖s‖/∂ε_b)/‖s‖ = 2G/‖s‖ (b_a δ_ab − (1/3 + n_a n_b) b_b).
-    fn eval(&self, y: &SVector<f64, 4>) -> (SVector<f64, 4>, Bordered) {
-        let k = 1.5f64.sqrt();
-        let g = self.g;
-        let b = Vector3::new(y[0], y[1], y[2]).map(|e| exp_small(2.0 * e));
+    fn eval(&self, y: &SVector<L, 4>) -> (SVector<L, 4>, Bordered<L>) {
+        let k = L::splat(1.5f64.sqrt());
+        let g = L::splat(self.g);
+        let b = Vector3::new(y[0], y[1], y[2]).map(|e| exp_small(L::splat(2.0) * e));
         let s = b.add_scalar(-b.mean()) * g;
         let s_norm = s.norm();
-        let s_norm_inv = 1.0 / s_norm;
+        let s_norm_inv = L::splat(1.0) / s_norm;
         let n = s * s_norm_inv;
         let at = self.path.at(y[3]);
         let k_dalpha = k * at.dalpha;
-        let mut r = SVector::<f64, 4>::zeros();
-        let mut a = Matrix3::<f64>::identity();
-        let scale = k_dalpha * 2.0 * g * s_norm_inv;
+        let mut r = SVector::<L, 4>::zeros();
+        let mut a = Matrix3::<L>::identity();
+        let scale = k_dalpha * L::splat(2.0) * g * s_norm_inv;
         for j in 0..3 {
             r[j] = y[j] - self.eps_trial[j] + k_dalpha * n[j];
             let scaled_b = scale * b[j];
             for i in 0..3 {
-                a[(i, j)] -= scaled_b * (1.0 / 3.0 + n[i] * n[j]);
+                a[(i, j)] -= scaled_b * (L::splat(1.0 / 3.0) + n[i] * n[j]);
             }
             a[(j, j)] += scaled_b;
         }
-        r[3] = (k * s_norm - at.tau_y) * self.g_inv;
+        let g_inv = L::splat(self.g_inv);
+        r[3] = (k * s_norm - at.tau_y) * g_inv;
         let jac = Bordered {
             a,
             c: n * k_dalpha,
-            d: n.component_mul(&b) * (2.0 * k),
-            e: -at.dtau_y_du * self.g_inv,
+            d: n.component_mul(&b) * L::splat(2.0 * 1.5f64.sqrt()),
+            e: -at.dtau_y_du * g_inv,
         };
         (r, jac)
     }
@@ -119,6 +161,25 @@ pub struct Returned {
     pub tau: M3<f64>,
 }
 
+/// One point that yields: its F, history and onset of flow (τ_y0 below its trial stress).
+#[derive(Debug, Clone, Copy)]
+pub struct Yielding {
+    pub f: M3<f64>,
+    pub old: State<f64>,
+    pub onset: Onset,
+}
+
+impl Default for Yielding {
+    /// A placeholder (an unstrained virgin point at 0 K).
+    fn default() -> Self {
+        Yielding {
+            f: M3::identity(),
+            old: State::virgin(0.0),
+            onset: Onset::default(),
+        }
+    }
+}
+
 /// Solve the local problem in real arithmetic for a trial state above the flow stress
 /// `onset.tau_y0` = τ_y(α_n, 0, θ_n) [Pa] at which it yields.
 pub fn solve(
@@ -130,10 +191,82 @@ pub fn solve(
 ) -> Result<Returned, MaterialError> {
     let fe_trial = f * old.fp_inv;
     let eigen = sym_eigen::decompose(&(fe_trial * fe_trial.transpose()));
-    let eps_trial = eigen.values.map(|l2| 0.5 * ln_near_one(l2));
+    let solved = solve_local(m, &eigen.values, onset, old.dalpha, dt);
+    match solved.failures {
+        [Some(error), ..] => Err(error),
+        _ => assemble(m, f, old, &solved.lane(0, &eigen, &fe_trial)),
+    }
+}
+
+/// `solve` for many points of one material and Δt, four at a time in lockstep; `deliver`
+/// takes each point's index in `points` and its return. Each return equals `solve`'s to
+/// the bit.
+pub fn solve_batch(
+    m: &ElastoPlastic<f64>,
+    points: &[Yielding],
+    dt: f64,
+    deliver: &mut dyn FnMut(usize, Result<Returned, MaterialError>),
+) {
+    for (g, group) in points.chunks(MAX_LANES).enumerate() {
+        let n = group.len();
+        let point = |i: usize| &group[i.min(n - 1)];
+        let mut fe_trial = [M3::zeros(); MAX_LANES];
+        let mut eigen = [SymEigen::default(); MAX_LANES];
+        for (i, p) in group.iter().enumerate() {
+            fe_trial[i] = p.f * p.old.fp_inv;
+            eigen[i] = sym_eigen::decompose(&(fe_trial[i] * fe_trial[i].transpose()));
+        }
+        // short groups repeat their last point in the lanes left over
+        let b_trial = Vector3::from_fn(|a, _| pack::<F64x4>(|i| eigen[i.min(n - 1)].values[a]));
+        let onset = Onset::pack(|i| point(i).onset);
+        let previous = pack(|i| point(i).old.dalpha);
+        let solved = solve_local(m, &b_trial, &onset, previous, dt);
+        for (i, p) in group.iter().enumerate() {
+            let returned = match &solved.failures[i] {
+                Some(error) => Err(error.clone()),
+                None => assemble(m, &p.f, &p.old, &solved.lane(i, &eigen[i], &fe_trial[i])),
+            };
+            deliver(g * MAX_LANES + i, returned);
+        }
+    }
+}
+
+/// The solved local problems of a point per lane.
+struct SolvedLanes<L: Lane> {
+    eps_trial: Vector3<L>,
+    /// λ_a / λ_a^tr = exp(−√(3/2) Δα n_a)
+    ratio: Vector3<L>,
+    dalpha: L,
+    failures: [Option<MaterialError>; MAX_LANES],
+}
+
+impl<L: Lane> SolvedLanes<L> {
+    /// Lane `i`, with its point's trial eigenpairs and Fe^tr.
+    fn lane<'a>(&self, i: usize, eigen: &'a SymEigen, fe_trial: &'a M3<f64>) -> Local<'a> {
+        let lane = |v: &Vector3<L>| v.map(|x| x.extract(i));
+        Local {
+            eigen,
+            fe_trial,
+            eps_trial: lane(&self.eps_trial),
+            ratio: lane(&self.ratio),
+            dalpha: self.dalpha.extract(i),
+        }
+    }
+}
+
+/// The local problems of a point per lane from their squared trial stretches `b_trial`,
+/// onsets of flow and previous increments.
+fn solve_local<L: Lane>(
+    m: &ElastoPlastic<f64>,
+    b_trial: &Vector3<L>,
+    onset: &Onset<L>,
+    previous: L,
+    dt: f64,
+) -> SolvedLanes<L> {
+    let eps_trial = b_trial.map(|l2| L::splat(0.5) * ln_near_one(l2));
     let problem = Problem::new(m, eps_trial, onset, dt);
-    let y0 = first_guess(&problem, &eigen.values, onset.tau_y0, old.dalpha);
-    let y = local_newton::solve(|y| problem.eval(y), y0)?;
+    let y0 = first_guess(&problem, b_trial, onset.tau_y0, previous);
+    let Roots { x: y, failures } = local_newton::solve_lanes(|y| problem.eval(y), y0);
     // exp(−√(3/2) Δα N) = diag(λ_a / λ_a^tr) in the eigenbasis.
     let ratio = Vector3::new(
         y[0] - eps_trial[0],
@@ -141,23 +274,50 @@ pub fn solve(
         y[2] - eps_trial[2],
     )
     .map(exp_small);
-    let flow = eigen.with_values(&ratio);
+    SolvedLanes {
+        eps_trial,
+        ratio,
+        dalpha: y[3].simd_exp(),
+        failures,
+    }
+}
+
+/// One point's solved local problem.
+struct Local<'a> {
+    eigen: &'a SymEigen,
+    fe_trial: &'a M3<f64>,
+    eps_trial: Vector3<f64>,
+    /// λ_a / λ_a^tr
+    ratio: Vector3<f64>,
+    dalpha: f64,
+}
+
+/// Fp⁻¹ = F⁻¹ exp(−√(3/2) Δα N) Fe^tr, α and τ from a solved local problem.
+fn assemble(
+    m: &ElastoPlastic<f64>,
+    f: &M3<f64>,
+    old: &State<f64>,
+    local: &Local,
+) -> Result<Returned, MaterialError> {
+    let flow = local.eigen.with_values(&local.ratio);
     let f_inv = inverse(f).ok_or(MaterialError::InvertedDeformation {
         det_f: f.determinant(),
     })?;
     let p = m.elastic.spherical(
-        eps_trial.sum(),
+        local.eps_trial.sum(),
         old.theta - m.thermal.theta0,
         m.thermal.alpha_sigma,
     );
-    let tau_a = eigen
+    let g = m.elastic.shear_modulus();
+    let tau_a = local
+        .eigen
         .values
-        .component_mul(&ratio.component_mul(&ratio))
-        .map(|b| problem.g * (b - 1.0) + p);
+        .component_mul(&local.ratio.component_mul(&local.ratio))
+        .map(|b| g * (b - 1.0) + p);
     Ok(Returned {
-        fp_inv: f_inv * flow * fe_trial,
-        alpha: old.alpha + y[3].exp(),
-        tau: eigen.with_values(&tau_a),
+        fp_inv: f_inv * flow * local.fe_trial,
+        alpha: old.alpha + local.dalpha,
+        tau: local.eigen.with_values(&tau_a),
     })
 }
 
@@ -174,37 +334,41 @@ pub fn solve(
 /// previous increment (steps per return: see `SCALAR_GUESS_TOL`). q^tr − τ_y(Δα) is a
 /// small difference of large numbers, so q^tr must be the Neo-Hooke value: a log-strain
 /// (Hencky) estimate is off by O(ε_e) in q and by percents in Δα.
-fn first_guess(
-    problem: &Problem,
-    b_trial: &Vector3<f64>,
-    tau_y0: f64,
-    previous: f64,
-) -> SVector<f64, 4> {
-    let (g, eps_trial) = (problem.g, problem.eps_trial);
-    let k = 1.5f64.sqrt();
+fn first_guess<L: Lane>(
+    problem: &Problem<L>,
+    b_trial: &Vector3<L>,
+    tau_y0: L,
+    previous: L,
+) -> SVector<L, 4> {
+    let (g, eps_trial) = (L::splat(problem.g), problem.eps_trial);
+    let k = L::splat(1.5f64.sqrt());
+    let zero = L::splat(0.0);
     let s_trial = b_trial.add_scalar(-b_trial.mean()) * g;
     let q_trial = k * s_trial.norm();
     let n_trial = s_trial / s_trial.norm();
     let g_tilde = g * n_trial.component_mul(&n_trial).dot(b_trial);
     // (φ^tr > 0 was decided on σ, q^tr here comes from eigenvalues: at φ^tr ≈ 0 round-off
     // may leave them a few ulps apart.)
-    let overstress = (q_trial - tau_y0).max(f64::EPSILON * q_trial);
-    let rate_free = overstress / (3.0 * g_tilde);
-    let lowest = if previous > 0.0 {
-        rate_free.min(previous)
-    } else {
-        rate_free
-    };
-    let mut u = lowest.ln();
+    let overstress = (q_trial - tau_y0).simd_max(L::splat(f64::EPSILON) * q_trial);
+    let three_g_tilde = L::splat(3.0) * g_tilde;
+    let rate_free = overstress / three_g_tilde;
+    let lowest = select(
+        previous.simd_gt(zero),
+        rate_free.simd_min(previous),
+        rate_free,
+    );
+    let mut u = lowest.simd_ln();
     if let Some(rate_only) = problem.path.rate_only_bound(q_trial / tau_y0) {
-        u = u.min(rate_only);
+        u = u.simd_min(rate_only);
     }
+    let mut going = !none::<L>();
     for _ in 0..SCALAR_GUESS_STEPS {
         let at = problem.path.at(u);
-        let step = (q_trial - 3.0 * g_tilde * at.dalpha - at.tau_y)
-            / (3.0 * g_tilde * at.dalpha + at.dtau_y_du);
-        u += step.clamp(-1.0, 1.0);
-        if step.abs() < SCALAR_GUESS_TOL {
+        let step = (q_trial - three_g_tilde * at.dalpha - at.tau_y)
+            / (three_g_tilde * at.dalpha + at.dtau_y_du);
+        u = select(going, u + step.simd_clamp(L::splat(-1.0), L::splat(1.0)), u);
+        going = going & step.simd_abs().simd_ge(L::splat(SCALAR_GUESS_TOL));
+        if !going.any() {
             break;
         }
     }
@@ -219,15 +383,17 @@ fn first_guess(
     // 7e-4 above the kink in ln Δα at Δα = 2e-8; the 4×4 Newton started there sees a flat
     // yield function and its line search cannot land in the narrow band above the kink.)
     let eps_dev = eps_trial.add_scalar(-eps_trial.mean());
-    let dalpha_max = (eps_dev.norm() - tau_y0 / (6f64.sqrt() * g)) / k;
-    let hencky_error = (tau_y0 / g).powi(2);
-    let mut dalpha = u.exp();
-    if k * (dalpha - dalpha_max) > hencky_error && dalpha_max > 0.0 {
-        dalpha = dalpha_max;
-        u = dalpha.ln();
+    let dalpha_max = (eps_dev.norm() - tau_y0 / L::splat(6f64.sqrt() * problem.g)) / k;
+    let yield_strain = tau_y0 / g;
+    let hencky_error = yield_strain * yield_strain;
+    let mut dalpha = u.simd_exp();
+    let beyond = (k * (dalpha - dalpha_max)).simd_gt(hencky_error) & dalpha_max.simd_gt(zero);
+    if beyond.any() {
+        dalpha = select(beyond, dalpha_max, dalpha);
+        u = select(beyond, dalpha.simd_ln(), u);
     }
     let shift = n_trial * (k * dalpha);
-    SVector::<f64, 4>::new(
+    SVector::<L, 4>::new(
         eps_trial[0] - shift[0],
         eps_trial[1] - shift[1],
         eps_trial[2] - shift[2],
@@ -284,7 +450,8 @@ mod tests {
             SVector::<f64, 4>::new(0.0, 0.0, 0.0, 1.0),
             SVector::<f64, 4>::new(0.3, -1.0, 0.2, 0.5),
         ] {
-            let x = jac.solve(&rhs).expect("nonsingular");
+            let (x, regular) = jac.solve(&rhs);
+            assert!(regular, "singular");
             let err = (fd * x - rhs).norm() / rhs.norm();
             assert!(err < 1e-6, "J_fd J⁻¹ b − b: relative error {err:e}");
         }

@@ -21,7 +21,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 /// Eigenvalues and orthonormal eigenvectors (columns, in the same order), unsorted.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 pub struct SymEigen {
     pub values: Vector3<f64>,
     pub vectors: Matrix3<f64>,

@@ -10,7 +10,8 @@
 /// Points from which a model's light loops are split across the pool.
 pub const LIGHT_PARALLEL_FROM: usize = 20_000;
 
-/// The largest piece of the material update. Its cost is uneven (a plastic return costs
+/// The piece of the material update (and of the point loop of a gather): its points'
+/// material updates are one batch (`Material::update_batch`). Its cost is uneven (a plastic return costs
 /// 5-10 elastic updates) and clustered (the plastic zone of a Taylor bar is its impact
 /// end), so the few large pieces of rayon's adaptive split leave one thread with most of
 /// the plastic points; pieces of 128 points (8-90 µs) let an idle thread steal the rest.

@@ -79,6 +79,13 @@ fn in_flow(m: &AnyModel) -> Result<(State, Matrix3<f64>, f64)> {
     Ok((state, f_at((k + 1) as f64 * de), dt))
 }
 
+/// One batch update (`Material::update_batch`), its results kept from the optimizer.
+fn m_batch(m: &AnyModel, f: &[Matrix3<f64>], dt: f64, old: &[State]) {
+    m.update_batch(black_box(f), dt, black_box(old), &mut |_, r| {
+        black_box(r.ok());
+    });
+}
+
 pub fn run(args: Args) -> Result<()> {
     let dir = &args.materials;
     let neo_hooke = load_material(dir.join("aisi_52100.toml"))?.model;
@@ -153,6 +160,16 @@ pub fn run(args: Args) -> Result<()> {
             &old,
             true,
         )?;
+        let batch = 16;
+        let (fs, olds) = (vec![f_next; batch], vec![old; batch]);
+        let ns = ns_per_call(args.repeats, || {
+            m_batch(&fast, &fs, dt_flow, &olds);
+        }) / batch as f64;
+        println!(
+            "{:<52} {:>12.0}",
+            format!("{label} increment in flow, {batch} at once (per point)"),
+            ns
+        );
         row(
             &format!("{label} plastic step, reference return"),
             &reference,

@@ -2,6 +2,10 @@
 //! accelerations, the grid velocity ṽ for the position update, and the velocity gradient
 //! L = Σ v_I ⊗ ∇N_I that updates F, V, σ and the material history (the out-of-plane
 //! terms from `Kinematics::deformation`).
+//!
+//! A block's points go a piece (`grain::MATERIAL_PIECE`) at a time: the interpolation and
+//! new F of every point of the piece, then one `Material::update_batch` for all of them
+//! (the plastic returns four at a time in lockstep), then V, bulk viscosity and work.
 
 use super::Solver;
 use crate::failure::{Cause, SimulationError};
@@ -10,7 +14,7 @@ use crate::grid::Grid;
 use crate::kinematics::Kinematics;
 use crate::sum::fixed_sum;
 use crate::viscosity::BulkViscosity;
-use crate::weights::Stencil;
+use crate::weights::{Stencil, WeightCache};
 use materials::{Material, State};
 use nalgebra::{Matrix3, SMatrix, SVector};
 use rayon::prelude::*;
@@ -46,27 +50,74 @@ struct Deformation<'a> {
     cell: f64,
 }
 
-/// One point's deformation state, updated in place.
-struct PointDeformation<'a> {
-    f: &'a mut Matrix3<f64>,
-    volume: &'a mut f64,
-    sigma: &'a mut Matrix3<f64>,
-    state: &'a mut State<f64>,
-    work: &'a mut f64,
+/// The points of one piece of a block (`grain::MATERIAL_PIECE` or fewer), from point
+/// `first` of the model on.
+struct Piece<'a, const D: usize> {
+    first: usize,
+    x: &'a [SVector<f64, D>],
+    x_ref: &'a [SVector<f64, D>],
+    v: &'a mut [SVector<f64, D>],
+    v0: &'a [f64],
+    volume: &'a mut [f64],
+    f: &'a mut [Matrix3<f64>],
+    sigma: &'a mut [Matrix3<f64>],
+    state: &'a mut [State<f64>],
+    v_grid: &'a mut [SVector<f64, D>],
+    work: &'a mut [f64],
+}
+
+impl<const D: usize> Piece<'_, D> {
+    /// Point j's ṽ and L from the grid, and (with `motion` = Some(Δt)) v ← v + a Δt with ṽ
+    /// stored for the position update; `None` if its velocity is not finite.
+    fn advance(
+        &mut self,
+        j: usize,
+        (grid, weights): (&Grid<D>, &WeightCache<D>),
+        motion: Option<f64>,
+        failure: &mut Failure,
+    ) -> Option<(SVector<f64, D>, SMatrix<f64, D, D>)> {
+        let i = self.first + j;
+        let (vg, a, l) = interpolate(grid, &weights.stencil(i));
+        if let Some(dt) = motion {
+            self.v[j] += a * dt;
+            self.v_grid[j] = vg;
+            if !self.v[j].iter().all(|c| c.is_finite()) {
+                earliest(failure, i, Cause::NonFinite { what: "velocity" });
+                return None;
+            }
+        }
+        Some((vg, l))
+    }
+}
+
+/// One point's kinematics for its material update: the 3-D velocity gradient, the new F
+/// and its determinant.
+#[derive(Clone, Copy)]
+struct Kinematic {
+    l3: Matrix3<f64>,
+    f_new: Matrix3<f64>,
+    det: f64,
+}
+
+/// The earliest failing point of a piece (index in the model) and its cause.
+type Failure = Option<(usize, Box<Cause>)>;
+
+fn earliest(failure: &mut Failure, i: usize, cause: Cause) {
+    if failure.as_ref().is_none_or(|(j, _)| i < *j) {
+        *failure = Some((i, Box::new(cause)));
+    }
 }
 
 impl Deformation<'_> {
-    /// F ← (I + L Δt) F (with the kinematics' out-of-plane terms), V = det F V0, σ and
-    /// history from the material, bulk viscosity, and the stress work ½ (σV + σ'V') : D Δt.
-    fn update<const D: usize>(
+    /// F ← (I + L Δt) F (with the kinematics' out-of-plane terms) and its checks.
+    fn kinematic<const D: usize>(
         &self,
         l: &SMatrix<f64, D, D>,
         vg: &SVector<f64, D>,
-        (x, x_ref, v0): (&SVector<f64, D>, &SVector<f64, D>, f64),
-        p: PointDeformation<'_>,
-    ) -> Result<(), Cause> {
-        let dt = self.dt;
-        let (l3, f_new) = self.kinematics.deformation(l, vg, (x, x_ref), p.f, dt);
+        x: (&SVector<f64, D>, &SVector<f64, D>),
+        f: &Matrix3<f64>,
+    ) -> Result<Kinematic, Cause> {
+        let (l3, f_new) = self.kinematics.deformation(l, vg, x, f, self.dt);
         let det = f_new.determinant();
         if !det.is_finite() {
             return Err(Cause::NonFinite {
@@ -76,23 +127,56 @@ impl Deformation<'_> {
         if det <= 0.0 {
             return Err(Cause::InvertedDeformation { det_f: det });
         }
-        let (mut sigma_new, state_new) = self
-            .material
-            .update(&f_new, dt, p.state)
-            .map_err(Cause::Material)?;
-        let vol_new = det * v0;
-        let d = (l3 + l3.transpose()) * 0.5;
-        if let Some(q) = self.viscosity {
-            let rho = self.material.density() / det;
-            let q = q.pressure(rho, self.wave_speed, self.cell, d.trace());
-            sigma_new -= Matrix3::identity() * q;
+        Ok(Kinematic { l3, f_new, det })
+    }
+
+    /// σ and history of the piece's points from the material (all at once, `update_batch`),
+    /// then V = det F V0, bulk viscosity and the stress work ½ (σV + σ'V') : D Δt.
+    fn update<const D: usize>(
+        &self,
+        p: &mut Piece<'_, D>,
+        kinematic: &[Option<Kinematic>],
+        failure: &mut Failure,
+    ) {
+        let n = kinematic.len();
+        let mut f_new = [Matrix3::zeros(); grain::MATERIAL_PIECE];
+        let mut updated = [None; grain::MATERIAL_PIECE];
+        let mut deliver = |j: usize, result: Result<(Matrix3<f64>, State<f64>), _>| match result {
+            Ok(new) => updated[j] = Some(new),
+            Err(e) => earliest(failure, p.first + j, Cause::Material(e)),
+        };
+        if kinematic.iter().all(Option::is_some) {
+            for (slot, k) in f_new.iter_mut().zip(kinematic.iter().flatten()) {
+                *slot = k.f_new;
+            }
+            self.material
+                .update_batch(&f_new[..n], self.dt, p.state, &mut deliver);
+        } else {
+            // a piece with a failed point (the run stops): the others one by one
+            for (j, k) in kinematic.iter().enumerate() {
+                if let Some(k) = k {
+                    deliver(j, self.material.update(&k.f_new, self.dt, &p.state[j]));
+                }
+            }
         }
-        *p.work = 0.5 * (*p.sigma * *p.volume + sigma_new * vol_new).dot(&d) * dt;
-        *p.f = f_new;
-        *p.volume = vol_new;
-        *p.sigma = sigma_new;
-        *p.state = state_new;
-        Ok(())
+        for (j, (k, new)) in kinematic.iter().zip(&updated).enumerate() {
+            let (Some(k), Some((sigma, state))) = (k, new) else {
+                continue;
+            };
+            let mut sigma_new = *sigma;
+            let vol_new = k.det * p.v0[j];
+            let d = (k.l3 + k.l3.transpose()) * 0.5;
+            if let Some(q) = self.viscosity {
+                let rho = self.material.density() / k.det;
+                let q = q.pressure(rho, self.wave_speed, self.cell, d.trace());
+                sigma_new -= Matrix3::identity() * q;
+            }
+            p.work[j] = 0.5 * (p.sigma[j] * p.volume[j] + sigma_new * vol_new).dot(&d) * self.dt;
+            p.f[j] = k.f_new;
+            p.volume[j] = vol_new;
+            p.sigma[j] = sigma_new;
+            p.state[j] = *state;
+        }
     }
 }
 
@@ -109,14 +193,16 @@ impl<const D: usize> Solver<D> {
         let p = &mut self.particles;
         let s = &mut self.scratch;
         let weights = &s.weights;
+        let piece = grain::MATERIAL_PIECE;
         let mut first_failure: Option<(usize, Cause)> = None;
         for block in &mut self.blocks {
             let r = block.range.clone();
-            // the material update is always split, finely; a velocity update alone is light
+            // the material update is always split, a piece at a time; a velocity update
+            // alone is light
             let (least, most) = if deformation {
-                (1, grain::MATERIAL_PIECE)
+                (1, 1)
             } else {
-                (grain::light(p.len()), usize::MAX)
+                (grain::light(p.len()).div_ceil(piece), usize::MAX)
             };
             let update = Deformation {
                 material: &*block.material,
@@ -126,51 +212,60 @@ impl<const D: usize> Solver<D> {
                 wave_speed: block.wave_speed(),
                 cell: grid.min_spacing(),
             };
-            // a failure travels boxed: the per-point Option stays one word wide instead of
-            // a whole `Cause` copied through the reduction for every point (≈ 7 % of a
-            // small model's step, issue 15)
+            // a failure travels boxed: the per-piece Option stays one word wide instead of
+            // a whole `Cause` copied through the reduction (≈ 7 % of a small model's step,
+            // issue 15)
             let failure = (
-                &p.position[r.clone()],
-                &p.reference_position[r.clone()],
-                &mut p.velocity[r.clone()],
-                &p.volume0[r.clone()],
-                &mut p.volume[r.clone()],
-                &mut p.deformation[r.clone()],
-                &mut p.stress[r.clone()],
-                &mut block.state[..],
-                &mut s.grid_velocity[r.clone()],
-                &mut s.work[r.clone()],
+                p.position[r.clone()].par_chunks(piece),
+                p.reference_position[r.clone()].par_chunks(piece),
+                p.velocity[r.clone()].par_chunks_mut(piece),
+                p.volume0[r.clone()].par_chunks(piece),
+                p.volume[r.clone()].par_chunks_mut(piece),
+                p.deformation[r.clone()].par_chunks_mut(piece),
+                p.stress[r.clone()].par_chunks_mut(piece),
+                block.state.par_chunks_mut(piece),
+                s.grid_velocity[r.clone()].par_chunks_mut(piece),
+                s.work[r.clone()].par_chunks_mut(piece),
             )
                 .into_par_iter()
                 .enumerate()
                 .with_min_len(least)
                 .with_max_len(most)
                 .filter_map(
-                    |(j, (x, x_ref, v, v0, volume, f, sigma, state, v_grid, work))| {
-                        let i = r.start + j;
-                        let (vg, a, l) = interpolate(grid, &weights.stencil(i));
-                        if motion {
-                            *v += a * dt;
-                            *v_grid = vg;
-                            if !v.iter().all(|c| c.is_finite()) {
-                                let cause = Cause::NonFinite { what: "velocity" };
-                                return Some((i, Box::new(cause)));
-                            }
-                        }
-                        if !deformation {
-                            return None;
-                        }
-                        let point = PointDeformation {
-                            f,
+                    |(c, (x, x_ref, v, v0, volume, f, sigma, state, v_grid, work))| {
+                        let mut points = Piece {
+                            first: r.start + c * piece,
+                            x,
+                            x_ref,
+                            v,
+                            v0,
                             volume,
+                            f,
                             sigma,
                             state,
+                            v_grid,
                             work,
                         };
-                        update
-                            .update(&l, &vg, (x, x_ref, *v0), point)
-                            .err()
-                            .map(|cause| (i, Box::new(cause)))
+                        let (n, mut failure) = (points.v.len(), None);
+                        let (from, motion) = ((grid, weights), motion.then_some(dt));
+                        if !deformation {
+                            for j in 0..n {
+                                points.advance(j, from, motion, &mut failure);
+                            }
+                            return failure;
+                        }
+                        let mut kinematic = [None; grain::MATERIAL_PIECE];
+                        for (j, k) in kinematic.iter_mut().enumerate().take(n) {
+                            if let Some((vg, l)) = points.advance(j, from, motion, &mut failure) {
+                                let x = (&points.x[j], &points.x_ref[j]);
+                                match update.kinematic(&l, &vg, x, &points.f[j]) {
+                                    Ok(ok) => *k = Some(ok),
+                                    Err(e) => earliest(&mut failure, points.first + j, e),
+                                }
+                            }
+                        }
+                        update.update(&mut points, &kinematic[..n], &mut failure);
+                        failure
                     },
                 )
                 .min_by_key(|(i, _)| *i);

@@ -1,0 +1,66 @@
+//! Several material points in lockstep (issue 15). The principal return is written once
+//! for a lane type `L`: `f64` for one point, `F64x4` for four (simba's `WideF64x4`, SIMD
+//! arithmetic over `wide::f64x4`). Branches become lane masks (`select`), and the library
+//! functions (exp, ln, pow) are taken lane by lane from the same `f64` routines, so each
+//! lane of a batch gives the one-point result to the bit, whatever it is grouped with.
+
+use simba::simd::{SimdBool, SimdRealField, SimdValue};
+
+/// Four points in lockstep.
+pub type F64x4 = simba::simd::WideF64x4;
+
+/// The most lanes a lane type has (per-lane outcomes are kept in arrays of this length).
+pub const MAX_LANES: usize = 4;
+
+/// A lane type: `f64` or `F64x4`.
+pub trait Lane: SimdRealField<Element = f64> + Copy + Send + Sync {}
+
+impl<T: SimdRealField<Element = f64> + Copy + Send + Sync> Lane for T {}
+
+/// The lane mask of a lane type.
+pub type Mask<L> = <L as SimdValue>::SimdBool;
+
+/// A lane value from its per-lane values.
+#[inline]
+pub fn pack<L: Lane>(value: impl Fn(usize) -> f64) -> L {
+    let mut out = L::splat(value(0));
+    for i in 1..L::LANES {
+        out.replace(i, value(i));
+    }
+    out
+}
+
+/// `a` where `mask`, else `b`.
+#[inline]
+pub fn select<L: Lane>(mask: Mask<L>, a: L, b: L) -> L {
+    a.select(mask, b)
+}
+
+/// All lanes false.
+#[inline]
+pub fn none<L: Lane>() -> Mask<L> {
+    L::splat(0.0).simd_ne(L::splat(0.0))
+}
+
+/// Whether lane `i` of `mask` is set.
+#[inline]
+pub fn lane<L: Lane>(mask: Mask<L>, i: usize) -> bool {
+    mask.bitmask() & (1 << i) != 0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use simba::simd::SimdPartialOrd;
+
+    #[test]
+    fn masks_select_lane_by_lane() {
+        let a: F64x4 = pack(|i| i as f64);
+        let b = F64x4::splat(-1.0);
+        let m = a.simd_gt(F64x4::splat(1.5));
+        let s = select(m, a, b);
+        assert_eq!([0, 1, 2, 3].map(|i| s.extract(i)), [-1.0, -1.0, 2.0, 3.0]);
+        assert!(!lane::<F64x4>(m, 1) && lane::<F64x4>(m, 2));
+        assert!(!none::<F64x4>().any() && !none::<f64>());
+    }
+}
