@@ -4,18 +4,28 @@
 //! functions (exp, ln, pow) are taken lane by lane from the same `f64` routines, so each
 //! lane of a batch gives the one-point result to the bit, whatever it is grouped with.
 
+use crate::error::MaterialError;
 use simba::simd::{SimdBool, SimdRealField, SimdValue};
 
 /// Four points in lockstep.
 pub type F64x4 = simba::simd::WideF64x4;
 
-/// The most lanes a lane type has (per-lane outcomes are kept in arrays of this length).
+/// The most lanes a lane type has.
 pub const MAX_LANES: usize = 4;
 
 /// A lane type: `f64` or `F64x4`.
-pub trait Lane: SimdRealField<Element = f64> + Copy + Send + Sync {}
+pub trait Lane: SimdRealField<Element = f64> + Copy + Send + Sync {
+    /// A slot per lane for what failed in it.
+    type Failures: Default + AsRef<[Option<MaterialError>]> + AsMut<[Option<MaterialError>]>;
+}
 
-impl<T: SimdRealField<Element = f64> + Copy + Send + Sync> Lane for T {}
+impl Lane for f64 {
+    type Failures = [Option<MaterialError>; 1];
+}
+
+impl Lane for F64x4 {
+    type Failures = [Option<MaterialError>; 4];
+}
 
 /// The lane mask of a lane type.
 pub type Mask<L> = <L as SimdValue>::SimdBool;

@@ -7,7 +7,7 @@
 //! step in u can be astronomically large.
 
 use crate::error::MaterialError;
-use crate::lanes::{lane, none, select, Lane, Mask, MAX_LANES};
+use crate::lanes::{lane, none, select, Lane, Mask};
 use nalgebra::{Const, DimMin, SMatrix, SVector};
 use simba::simd::SimdBool;
 
@@ -55,17 +55,20 @@ pub fn solve<const N: usize, J: Jacobian<f64, N>>(
     eval: impl FnMut(&SVector<f64, N>) -> (SVector<f64, N>, J),
     x0: SVector<f64, N>,
 ) -> Result<SVector<f64, N>, MaterialError> {
-    let Roots { x, failures } = solve_lanes(eval, x0);
-    match failures {
-        [Some(error), ..] => Err(error),
-        _ => Ok(x),
+    let Roots {
+        x,
+        failures: [failure],
+    } = solve_lanes(eval, x0);
+    match failure {
+        Some(error) => Err(error),
+        None => Ok(x),
     }
 }
 
 /// The roots of a batch, and the failure of each lane that has none.
 pub struct Roots<L: Lane, const N: usize> {
     pub x: SVector<L, N>,
-    pub failures: [Option<MaterialError>; MAX_LANES],
+    pub failures: L::Failures,
 }
 
 /// `solve` for the lanes of a batch in lockstep: each lane takes the steps it would take
@@ -76,9 +79,9 @@ pub fn solve_lanes<L: Lane, const N: usize, J: Jacobian<L, N>>(
     x0: SVector<L, N>,
 ) -> Roots<L, N> {
     let tol = L::splat(TOL);
-    let mut failures: [Option<MaterialError>; MAX_LANES] = Default::default();
+    let mut failures = L::Failures::default();
     let mut fail = |mask: Mask<L>, error: &dyn Fn(usize) -> MaterialError| {
-        for (i, slot) in failures.iter_mut().enumerate().take(L::LANES) {
+        for (i, slot) in failures.as_mut().iter_mut().enumerate() {
             if lane::<L>(mask, i) {
                 *slot = Some(error(i));
             }

@@ -84,7 +84,9 @@ pub trait Model<D: Scalar>: Clone + Send + Sync {
 
     /// `update` of many points at once: `deliver(i, result)` for point i of `f` and `old`
     /// (same length), in any order. Models that can solve several points in lockstep
-    /// override it; each result equals `update`'s.
+    /// override it; each result equals `update`'s. A model that wraps another forwards it
+    /// (the default, one point at a time, would give the same numbers more slowly: the
+    /// preheated SHPB specimen ran 9 % slower before it did).
     fn update_batch(&self, f: &[M3<D>], dt: f64, old: &[State<D>], deliver: &mut Deliver<D>) {
         for (i, (f, old)) in f.iter().zip(old).enumerate() {
             deliver(i, self.update(f, dt, old));

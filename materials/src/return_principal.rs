@@ -192,9 +192,9 @@ pub fn solve(
     let fe_trial = f * old.fp_inv;
     let eigen = sym_eigen::decompose(&(fe_trial * fe_trial.transpose()));
     let solved = solve_local(m, &eigen.values, onset, old.dalpha, dt);
-    match solved.failures {
-        [Some(error), ..] => Err(error),
-        _ => assemble(m, f, old, &solved.lane(0, &eigen, &fe_trial)),
+    match &solved.failures {
+        [Some(error)] => Err(error.clone()),
+        [None] => assemble(m, f, old, &solved.lane(0, &eigen, &fe_trial)),
     }
 }
 
@@ -222,7 +222,7 @@ pub fn solve_batch(
         let previous = pack(|i| point(i).old.dalpha);
         let solved = solve_local(m, &b_trial, &onset, previous, dt);
         for (i, p) in group.iter().enumerate() {
-            let returned = match &solved.failures[i] {
+            let returned = match &solved.failures.as_ref()[i] {
                 Some(error) => Err(error.clone()),
                 None => assemble(m, &p.f, &p.old, &solved.lane(i, &eigen[i], &fe_trial[i])),
             };
@@ -237,7 +237,7 @@ struct SolvedLanes<L: Lane> {
     /// λ_a / λ_a^tr = exp(−√(3/2) Δα n_a)
     ratio: Vector3<L>,
     dalpha: L,
-    failures: [Option<MaterialError>; MAX_LANES],
+    failures: L::Failures,
 }
 
 impl<L: Lane> SolvedLanes<L> {

@@ -7,7 +7,7 @@
 //! θ_start with τ(λ_θ I) = 0:
 //! 3 Λ ln λ + G (λ² − 1) − 3 α_σ κ (θ_start − θ0) = 0, solved by Newton (≈ α_σ Δθ).
 
-use materials::material::{Model, State};
+use materials::material::{Deliver, Model, State};
 use materials::plasticity::ElastoPlastic;
 use materials::scalar::{c, Scalar};
 use materials::tensor::M3;
@@ -51,6 +51,9 @@ impl<D: Scalar, M: Model<D>> Model<D> for Preheated<M> {
         old: &State<D>,
     ) -> Result<(M3<D>, State<D>), MaterialError> {
         self.inner.update(f, dt, old)
+    }
+    fn update_batch(&self, f: &[M3<D>], dt: f64, old: &[State<D>], deliver: &mut Deliver<D>) {
+        self.inner.update_batch(f, dt, old, deliver)
     }
 }
 
