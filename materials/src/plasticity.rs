@@ -20,7 +20,7 @@ use crate::elastic::Elastic;
 use crate::error::MaterialError;
 use crate::flow_stress::{FlowStress, Onset};
 use crate::lanes::MAX_LANES;
-use crate::material::{Deliver, Model, State};
+use crate::material::{one_by_one, Deliver, Model, State};
 use crate::parameter_set;
 use crate::return_principal::{self, Yielding};
 use crate::return_reference;
@@ -159,10 +159,7 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
     /// at a time for dual scalars and the reference return.
     fn update_batch(&self, f: &[M3<D>], dt: f64, old: &[State<D>], deliver: &mut Deliver<D>) {
         if D::NDERIV > 0 || self.return_map == ReturnMap::Reference {
-            for (i, (f, old)) in f.iter().zip(old).enumerate() {
-                deliver(i, self.update(f, dt, old));
-            }
-            return;
+            return one_by_one(|f, old| self.update(f, dt, old), f, old, deliver);
         }
         let model = self.re();
         let mut group = YieldingGroup::default();

@@ -24,7 +24,7 @@ use crate::material::State;
 use crate::near_one::{exp_small, ln_near_one};
 use crate::plasticity::ElastoPlastic;
 use crate::sym_eigen::{self, SymEigen};
-use crate::tensor::{inverse, M3};
+use crate::tensor::{adjugate, det, inverse, M3};
 use nalgebra::{Matrix3, SVector, Vector3};
 use simba::simd::SimdBool;
 
@@ -85,25 +85,10 @@ impl<L: Lane> Jacobian<L, 4> for Bordered<L> {
 /// A⁻¹ by the adjugate (the operations of `tensor::inverse`), and the lanes where det A is
 /// a nonzero number.
 fn inverse_lanes<L: Lane>(a: &Matrix3<L>) -> (Matrix3<L>, Mask<L>) {
-    let m = |i: usize, j: usize| a[(i, j)];
-    let det = m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1))
-        - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0))
-        + m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0));
+    let det = det(a);
     let zero = L::splat(0.0);
     let regular = det.simd_ne(zero) & (det - det).simd_eq(zero);
-    let inv_det = L::splat(1.0) / det;
-    let cof = Matrix3::new(
-        m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1),
-        m(0, 2) * m(2, 1) - m(0, 1) * m(2, 2),
-        m(0, 1) * m(1, 2) - m(0, 2) * m(1, 1),
-        m(1, 2) * m(2, 0) - m(1, 0) * m(2, 2),
-        m(0, 0) * m(2, 2) - m(0, 2) * m(2, 0),
-        m(0, 2) * m(1, 0) - m(0, 0) * m(1, 2),
-        m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0),
-        m(0, 1) * m(2, 0) - m(0, 0) * m(2, 1),
-        m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0),
-    );
-    (cof * inv_det, regular)
+    (adjugate(a) * (L::splat(1.0) / det), regular)
 }
 
 impl<'a, L: Lane> Problem<'a, L> {

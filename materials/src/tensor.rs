@@ -3,6 +3,7 @@
 
 use crate::scalar::{c, Scalar};
 use nalgebra::Matrix3;
+use std::ops::{Add, Mul, Sub};
 
 pub type M3<D> = Matrix3<D>;
 
@@ -14,21 +15,27 @@ pub fn trace<D: Scalar>(a: &M3<D>) -> D {
     a[(0, 0)] + a[(1, 1)] + a[(2, 2)]
 }
 
-pub fn det<D: Scalar>(a: &M3<D>) -> D {
+/// The entry arithmetic of `det` and `adjugate`: real, dual and SIMD-lane scalars alike.
+pub trait Ring:
+    nalgebra::Scalar + Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self>
+{
+}
+
+impl<T> Ring for T where
+    T: nalgebra::Scalar + Copy + Add<Output = T> + Sub<Output = T> + Mul<Output = T>
+{
+}
+
+pub fn det<T: Ring>(a: &M3<T>) -> T {
     a[(0, 0)] * (a[(1, 1)] * a[(2, 2)] - a[(1, 2)] * a[(2, 1)])
         - a[(0, 1)] * (a[(1, 0)] * a[(2, 2)] - a[(1, 2)] * a[(2, 0)])
         + a[(0, 2)] * (a[(1, 0)] * a[(2, 1)] - a[(1, 1)] * a[(2, 0)])
 }
 
-/// Inverse by the adjugate; `None` if the determinant's real part is zero.
-pub fn inverse<D: Scalar>(a: &M3<D>) -> Option<M3<D>> {
-    let d = det(a);
-    if d.re() == 0.0 || !d.re().is_finite() {
-        return None;
-    }
-    let inv_d = d.recip();
+/// The adjugate (transposed cofactor matrix): A adj(A) = det(A) I.
+pub fn adjugate<T: Ring>(a: &M3<T>) -> M3<T> {
     let m = |i: usize, j: usize| a[(i, j)];
-    let cof = M3::new(
+    M3::new(
         m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1),
         m(0, 2) * m(2, 1) - m(0, 1) * m(2, 2),
         m(0, 1) * m(1, 2) - m(0, 2) * m(1, 1),
@@ -38,8 +45,16 @@ pub fn inverse<D: Scalar>(a: &M3<D>) -> Option<M3<D>> {
         m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0),
         m(0, 1) * m(2, 0) - m(0, 0) * m(2, 1),
         m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0),
-    );
-    Some(cof * inv_d)
+    )
+}
+
+/// Inverse by the adjugate; `None` if the determinant's real part is zero.
+pub fn inverse<D: Scalar>(a: &M3<D>) -> Option<M3<D>> {
+    let d = det(a);
+    if d.re() == 0.0 || !d.re().is_finite() {
+        return None;
+    }
+    Some(adjugate(a) * d.recip())
 }
 
 /// Deviatoric part `a − tr(a)/3 I`.
