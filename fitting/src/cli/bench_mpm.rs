@@ -11,7 +11,7 @@
 //! that, and the fraction of plastic updates (α grew) in the measured steps is reported.
 //! Only the `step` calls are timed. After each measured step its material updates are
 //! replayed alone (the new F on the history before the step, so the same updates, plastic
-//! or not) on the same threads and timed: that is the material share; the rest of a step
+//! or not; in the step's pieces, by `update_batch`) on the same threads and timed: that is the material share; the rest of a step
 //! is transfers (scatter, grid solve, gather, contact).
 
 use super::bench_small::{alone, concurrent, median, SmallRun};
@@ -23,6 +23,7 @@ use mpm_core::shape::{Reach, ShapeFunction};
 use mpm_core::{Kinematics, RigidBody, Scheme, Settings, Solver, StageTimes};
 use nalgebra::{SVector, Vector3};
 use rayon::prelude::*;
+use std::hint::black_box;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
@@ -203,11 +204,17 @@ fn measure(
             plastic += (block.state.iter().zip(&before))
                 .filter(|(new, old)| new.alpha > old.alpha)
                 .count();
-            // this step's material updates again, alone: its new F on the old history
+            // this step's material updates again, alone: its new F on the old history, in
+            // the step's batches
             let start = Instant::now();
-            let _: Vec<_> = (s.particles.deformation.par_iter().zip(before.par_iter()))
-                .map(|(f, st)| block.material.update(f, s.dt, st).map(|r| r.0[(0, 0)]))
-                .collect();
+            let piece = mpm_core::grain::MATERIAL_PIECE;
+            (s.particles.deformation.par_chunks(piece))
+                .zip(before.par_chunks(piece))
+                .for_each(|(f, st)| {
+                    block.material.update_batch(f, s.dt, st, &mut |_, r| {
+                        black_box(r.ok());
+                    })
+                });
             material += start.elapsed().as_secs_f64();
         }
         Ok((
