@@ -5,6 +5,7 @@
 //! lane of a batch gives the one-point result to the bit, whatever it is grouped with.
 
 use crate::error::MaterialError;
+use nalgebra::SMatrix;
 use simba::simd::{SimdBool, SimdRealField, SimdValue};
 
 /// Four points in lockstep.
@@ -50,6 +51,28 @@ pub fn select<L: Lane>(mask: Mask<L>, a: L, b: L) -> L {
 #[inline]
 pub fn none<L: Lane>() -> Mask<L> {
     L::splat(0.0).simd_ne(L::splat(0.0))
+}
+
+/// The lanes where `x` is a nonzero finite number (a divisor that gives a number).
+#[inline]
+pub fn regular<L: Lane>(x: L) -> Mask<L> {
+    finite(x) & x.simd_ne(L::splat(0.0))
+}
+
+/// The lanes where `x` is a finite number.
+#[inline]
+pub fn finite<L: Lane>(x: L) -> Mask<L> {
+    (x - x).simd_eq(L::splat(0.0))
+}
+
+/// `a` in the lanes of `mask`, `b` in the rest, entry by entry.
+#[inline]
+pub fn select_matrix<L: Lane, const R: usize, const C: usize>(
+    mask: Mask<L>,
+    a: &SMatrix<L, R, C>,
+    b: &SMatrix<L, R, C>,
+) -> SMatrix<L, R, C> {
+    a.zip_map(b, |a, b| select(mask, a, b))
 }
 
 /// Whether lane `i` of `mask` is set.

@@ -7,7 +7,7 @@
 //! step in u can be astronomically large.
 
 use crate::error::MaterialError;
-use crate::lanes::{lane, none, select, Lane, Mask};
+use crate::lanes::{finite, lane, none, select, select_matrix, Lane, Mask};
 use nalgebra::{Const, DimMin, SMatrix, SVector};
 use simba::simd::SimdBool;
 
@@ -97,7 +97,7 @@ pub fn solve_lanes<L: Lane, const N: usize, J: Jacobian<L, N>>(
             what: "local residual",
         });
         let converged = active & !non_finite & r_norm.simd_lt(tol);
-        root = select_vector(converged, &x, &root);
+        root = select_matrix(converged, &x, &root);
         active = active & !non_finite & !converged;
         if !active.any() {
             break;
@@ -110,7 +110,7 @@ pub fn solve_lanes<L: Lane, const N: usize, J: Jacobian<L, N>>(
         active = active & regular;
         let dx_norm = dx.amax();
         let small = active & dx_norm.simd_lt(L::splat(CONVERGED_STEP));
-        root = select_vector(small, &(x + dx), &root);
+        root = select_matrix(small, &(x + dx), &root);
         active = active & !small;
         if !active.any() {
             break;
@@ -123,8 +123,8 @@ pub fn solve_lanes<L: Lane, const N: usize, J: Jacobian<L, N>>(
             let r_t_norm = r_t.amax();
             let decrease = r_norm * (L::splat(1.0) - L::splat(1e-4) * step);
             let accept = searching & (r_t_norm.simd_lt(decrease) | r_t_norm.simd_lt(tol));
-            x = select_vector(accept, &trial, &x);
-            r = select_vector(accept, &r_t, &r);
+            x = select_matrix(accept, &trial, &x);
+            r = select_matrix(accept, &r_t, &r);
             k = k_t.select(accept, k);
             searching = searching & !accept;
             if !searching.any() {
@@ -134,7 +134,7 @@ pub fn solve_lanes<L: Lane, const N: usize, J: Jacobian<L, N>>(
         }
         // no step was accepted: a stalled solve that has stopped moving is converged
         let stopped = searching & dx_norm.simd_lt(L::splat(1e-12));
-        root = select_vector(stopped, &x, &root);
+        root = select_matrix(stopped, &x, &root);
         fail(searching & !stopped, &|i| {
             MaterialError::ReturnMapNotConverged {
                 iterations: MAX_ITERATIONS,
@@ -143,7 +143,7 @@ pub fn solve_lanes<L: Lane, const N: usize, J: Jacobian<L, N>>(
         });
         active = active & !searching;
         let still = active & (dx * step).amax().simd_lt(L::splat(1e-15));
-        root = select_vector(still, &x, &root);
+        root = select_matrix(still, &x, &root);
         active = active & !still;
         if !active.any() {
             break;
@@ -155,18 +155,4 @@ pub fn solve_lanes<L: Lane, const N: usize, J: Jacobian<L, N>>(
         residual: r_norm.extract(i),
     });
     Roots { x: root, failures }
-}
-
-/// The lanes where `x` is a finite number.
-fn finite<L: Lane>(x: L) -> Mask<L> {
-    (x - x).simd_eq(L::splat(0.0))
-}
-
-/// `a` in the lanes of `mask`, `b` in the rest.
-pub fn select_vector<L: Lane, const R: usize, const C: usize>(
-    mask: Mask<L>,
-    a: &SMatrix<L, R, C>,
-    b: &SMatrix<L, R, C>,
-) -> SMatrix<L, R, C> {
-    a.zip_map(b, |a, b| select(mask, a, b))
 }

@@ -47,7 +47,6 @@ impl<D: Scalar> State<D> {
     }
 }
 
-/// A material model written once for any scalar `D` (real or dual).
 /// Receives the update of point i of a batch: (σ, new state) or its failure.
 pub type Deliver<'a, D = f64> = dyn FnMut(usize, Result<(M3<D>, State<D>), MaterialError>) + 'a;
 
@@ -63,6 +62,7 @@ pub fn one_by_one<D: Scalar>(
     }
 }
 
+/// A material model written once for any scalar `D` (real or dual).
 pub trait Model<D: Scalar>: Clone + Send + Sync {
     /// The same model with parameters of another scalar type.
     type With<E: Scalar>: Model<E>;

@@ -18,8 +18,8 @@
 
 use crate::error::MaterialError;
 use crate::flow_stress::{LogIncrementPath, Onset};
-use crate::lanes::{none, pack, select, F64x4, Lane, Mask, MAX_LANES};
-use crate::local_newton::{self, select_vector, Jacobian, Roots};
+use crate::lanes::{none, pack, regular, select, select_matrix, F64x4, Lane, Mask, MAX_LANES};
+use crate::local_newton::{self, Jacobian, Roots};
 use crate::material::State;
 use crate::near_one::{exp_small, ln_near_one};
 use crate::plasticity::ElastoPlastic;
@@ -61,12 +61,11 @@ struct Bordered<L> {
 
 impl<L: Lane> Jacobian<L, 4> for Bordered<L> {
     fn solve(&self, b: &SVector<L, 4>) -> (SVector<L, 4>, Mask<L>) {
-        let (a_inv, regular) = inverse_lanes(&self.a);
+        let (a_inv, a_regular) = inverse_lanes(&self.a);
         let b_eps = Vector3::new(b[0], b[1], b[2]);
         let (y, w) = (a_inv * b_eps, a_inv * self.c);
         let schur = self.e - self.d.dot(&w);
-        let zero = L::splat(0.0);
-        let regular = regular & schur.simd_ne(zero) & (schur - schur).simd_eq(zero);
+        let regular = a_regular & regular(schur);
         let du = (b[3] - self.d.dot(&y)) / schur;
         let x = y - w * du;
         (SVector::<L, 4>::new(x[0], x[1], x[2], du), regular)
@@ -74,9 +73,9 @@ impl<L: Lane> Jacobian<L, 4> for Bordered<L> {
 
     fn select(self, mask: Mask<L>, other: Self) -> Self {
         Bordered {
-            a: select_vector(mask, &self.a, &other.a),
-            c: select_vector(mask, &self.c, &other.c),
-            d: select_vector(mask, &self.d, &other.d),
+            a: select_matrix(mask, &self.a, &other.a),
+            c: select_matrix(mask, &self.c, &other.c),
+            d: select_matrix(mask, &self.d, &other.d),
             e: select(mask, self.e, other.e),
         }
     }
@@ -86,9 +85,7 @@ impl<L: Lane> Jacobian<L, 4> for Bordered<L> {
 /// a nonzero number.
 fn inverse_lanes<L: Lane>(a: &Matrix3<L>) -> (Matrix3<L>, Mask<L>) {
     let det = det(a);
-    let zero = L::splat(0.0);
-    let regular = det.simd_ne(zero) & (det - det).simd_eq(zero);
-    (adjugate(a) * (L::splat(1.0) / det), regular)
+    (adjugate(a) * (L::splat(1.0) / det), regular(det))
 }
 
 impl<'a, L: Lane> Problem<'a, L> {

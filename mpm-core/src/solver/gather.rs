@@ -43,6 +43,8 @@ fn interpolate<const D: usize>(
 /// What the deformation update of every point of one block shares.
 struct Deformation<'a> {
     material: &'a dyn Material,
+    /// reference density ρ0 [kg/m³]
+    rho0: f64,
     dt: f64,
     kinematics: Kinematics,
     viscosity: Option<BulkViscosity>,
@@ -90,12 +92,11 @@ impl<const D: usize> Piece<'_, D> {
     }
 }
 
-/// One point's kinematics for its material update: the 3-D velocity gradient, the new F
-/// and its determinant.
+/// What the update after the material needs of a point's kinematics: its 3-D velocity
+/// gradient and det F of the new F (which goes to the material on its own).
 #[derive(Clone, Copy)]
 struct Kinematic {
     l3: Matrix3<f64>,
-    f_new: Matrix3<f64>,
     det: f64,
 }
 
@@ -109,15 +110,18 @@ fn earliest(failure: &mut Failure, i: usize, cause: Cause) {
 }
 
 impl Deformation<'_> {
-    /// F ← (I + L Δt) F (with the kinematics' out-of-plane terms) and its checks.
+    /// F ← (I + L Δt) F (with the kinematics' out-of-plane terms), written to `f_new`, and
+    /// its checks.
     fn kinematic<const D: usize>(
         &self,
         l: &SMatrix<f64, D, D>,
         vg: &SVector<f64, D>,
         x: (&SVector<f64, D>, &SVector<f64, D>),
         f: &Matrix3<f64>,
+        f_new: &mut Matrix3<f64>,
     ) -> Result<Kinematic, Cause> {
-        let (l3, f_new) = self.kinematics.deformation(l, vg, x, f, self.dt);
+        let l3;
+        (l3, *f_new) = self.kinematics.deformation(l, vg, x, f, self.dt);
         let det = f_new.determinant();
         if !det.is_finite() {
             return Err(Cause::NonFinite {
@@ -127,7 +131,7 @@ impl Deformation<'_> {
         if det <= 0.0 {
             return Err(Cause::InvertedDeformation { det_f: det });
         }
-        Ok(Kinematic { l3, f_new, det })
+        Ok(Kinematic { l3, det })
     }
 
     /// σ and history of the piece's points from the material (all at once, `update_batch`),
@@ -135,27 +139,22 @@ impl Deformation<'_> {
     fn update<const D: usize>(
         &self,
         p: &mut Piece<'_, D>,
-        kinematic: &[Option<Kinematic>],
+        (f_new, kinematic): (&[Matrix3<f64>], &[Option<Kinematic>]),
         failure: &mut Failure,
     ) {
-        let n = kinematic.len();
-        let mut f_new = [Matrix3::zeros(); grain::MATERIAL_PIECE];
         let mut updated = [None; grain::MATERIAL_PIECE];
         let mut deliver = |j: usize, result: Result<(Matrix3<f64>, State<f64>), _>| match result {
             Ok(new) => updated[j] = Some(new),
             Err(e) => earliest(failure, p.first + j, Cause::Material(e)),
         };
         if kinematic.iter().all(Option::is_some) {
-            for (slot, k) in f_new.iter_mut().zip(kinematic.iter().flatten()) {
-                *slot = k.f_new;
-            }
             self.material
-                .update_batch(&f_new[..n], self.dt, p.state, &mut deliver);
+                .update_batch(f_new, self.dt, p.state, &mut deliver);
         } else {
             // a piece with a failed point (the run stops): the others one by one
             for (j, k) in kinematic.iter().enumerate() {
-                if let Some(k) = k {
-                    deliver(j, self.material.update(&k.f_new, self.dt, &p.state[j]));
+                if k.is_some() {
+                    deliver(j, self.material.update(&f_new[j], self.dt, &p.state[j]));
                 }
             }
         }
@@ -167,12 +166,12 @@ impl Deformation<'_> {
             let vol_new = k.det * p.v0[j];
             let d = (k.l3 + k.l3.transpose()) * 0.5;
             if let Some(q) = self.viscosity {
-                let rho = self.material.density() / k.det;
+                let rho = self.rho0 / k.det;
                 let q = q.pressure(rho, self.wave_speed, self.cell, d.trace());
                 sigma_new -= Matrix3::identity() * q;
             }
             p.work[j] = 0.5 * (p.sigma[j] * p.volume[j] + sigma_new * vol_new).dot(&d) * self.dt;
-            p.f[j] = k.f_new;
+            p.f[j] = f_new[j];
             p.volume[j] = vol_new;
             p.sigma[j] = sigma_new;
             p.state[j] = *state;
@@ -206,6 +205,7 @@ impl<const D: usize> Solver<D> {
             };
             let update = Deformation {
                 material: &*block.material,
+                rho0: block.material.density(),
                 dt,
                 kinematics: self.settings.kinematics,
                 viscosity: self.settings.bulk_viscosity,
@@ -254,17 +254,19 @@ impl<const D: usize> Solver<D> {
                             }
                             return failure;
                         }
+                        let mut f_new = [Matrix3::zeros(); grain::MATERIAL_PIECE];
                         let mut kinematic = [None; grain::MATERIAL_PIECE];
-                        for (j, k) in kinematic.iter_mut().enumerate().take(n) {
+                        for j in 0..n {
                             if let Some((vg, l)) = points.advance(j, from, motion, &mut failure) {
                                 let x = (&points.x[j], &points.x_ref[j]);
-                                match update.kinematic(&l, &vg, x, &points.f[j]) {
-                                    Ok(ok) => *k = Some(ok),
+                                match update.kinematic(&l, &vg, x, &points.f[j], &mut f_new[j]) {
+                                    Ok(ok) => kinematic[j] = Some(ok),
                                     Err(e) => earliest(&mut failure, points.first + j, e),
                                 }
                             }
                         }
-                        update.update(&mut points, &kinematic[..n], &mut failure);
+                        let batch = (&f_new[..n], &kinematic[..n]);
+                        update.update(&mut points, batch, &mut failure);
                         failure
                     },
                 )
