@@ -59,8 +59,9 @@ pub fn regular<L: Lane>(x: L) -> Mask<L> {
     finite(x) & x.simd_ne(L::splat(0.0))
 }
 
-/// The lanes where `x` is a finite number.
+/// The lanes where `x` is a finite number: x − x is 0 there and NaN for ±∞ and NaN.
 #[inline]
+#[allow(clippy::eq_op)]
 pub fn finite<L: Lane>(x: L) -> Mask<L> {
     (x - x).simd_eq(L::splat(0.0))
 }

@@ -33,6 +33,7 @@ pub mod sum;
 pub mod template;
 pub mod timestep;
 pub mod viscosity;
+pub mod warm;
 pub mod watchdog;
 pub mod weights;
 

@@ -2,7 +2,8 @@
 //! is cut into fixed chunks, each chunk is summed in order, and the chunk sums are added in
 //! order. (Rayon's own `sum` splits adaptively, so its rounding depends on the threads.)
 
-use crate::grain;
+use crate::grain::{self, Cut};
+use crate::warm;
 use rayon::prelude::*;
 
 const CHUNK: usize = 2048;
@@ -13,11 +14,10 @@ where
     T: Copy + Send + Sync + std::ops::Add<Output = T>,
     F: Fn(usize) -> T + Sync,
 {
-    let chunks = n.div_ceil(CHUNK);
-    let partial: Vec<T> = (0..chunks)
-        .into_par_iter()
-        .with_min_len(grain::light(n))
-        .map(|c| (c * CHUNK..((c + 1) * CHUNK).min(n)).fold(zero, |s, i| s + f(i)))
-        .collect();
-    partial.into_iter().fold(zero, |s, x| s + x)
+    let cut = Cut {
+        items: CHUNK,
+        ..grain::light(n)
+    };
+    let range = (0..n).into_par_iter();
+    warm::fold(range, cut, zero, |s, i| s + f(i), |s, x| s + x)
 }

@@ -8,6 +8,7 @@
 use crate::grain;
 use crate::grid::Grid;
 use crate::shape::{Hex, Kernel, Point, Reach};
+use crate::warm;
 use nalgebra::{Matrix3, SVector};
 use rayon::prelude::*;
 use std::ops::Range;
@@ -73,29 +74,27 @@ impl<const D: usize> WeightCache<D> {
         let (nodes, reach) = (self.nodes, self.reach);
         let pad: usize = grid.strides.iter().map(|s| s * reach.pad).sum();
         let (start, end) = (range.start, range.end);
-        positions[range.clone()]
-            .par_iter()
-            .enumerate()
+        let points = (positions[range.clone()].par_iter().enumerate())
             .zip(self.first[range].par_iter_mut())
             .zip(self.n[start * nodes..end * nodes].par_chunks_mut(nodes))
-            .zip(self.grad[start * nodes..end * nodes].par_chunks_mut(nodes))
-            .with_min_len(grain::light(positions.len()))
-            .for_each(|((((k, x), first), n), grad)| {
-                let i = start + k;
-                let (corner, xi) = grid.locate(x);
-                let point = Point {
-                    xi,
-                    half: &half[i],
-                    f: &f[i],
-                    hex: hex.get(i),
-                    inv_h: &grid.inv_spacing,
-                };
-                let start = K::evaluate(&point, reach, n, grad);
-                let shift: usize = (0..D)
-                    .map(|k| (start[k] + reach.pad as i64) as usize * grid.strides[k])
-                    .sum();
-                *first = corner - pad + shift;
-            });
+            .zip(self.grad[start * nodes..end * nodes].par_chunks_mut(nodes));
+        let cut = grain::light(positions.len());
+        warm::for_each(points, cut, |((((k, x), first), n), grad)| {
+            let i = start + k;
+            let (corner, xi) = grid.locate(x);
+            let point = Point {
+                xi,
+                half: &half[i],
+                f: &f[i],
+                hex: hex.get(i),
+                inv_h: &grid.inv_spacing,
+            };
+            let start = K::evaluate(&point, reach, n, grad);
+            let shift: usize = (0..D)
+                .map(|k| (start[k] + reach.pad as i64) as usize * grid.strides[k])
+                .sum();
+            *first = corner - pad + shift;
+        });
     }
 
     /// The stencil of particle `i`.

@@ -72,10 +72,12 @@ pub fn alone(threads: usize, steps: usize, warm_up: usize) -> Result<SmallRun> {
         }
         let mut stages = StageTimes::default();
         let (wall_s, user_s, system_s) = timed(|| {
-            for _ in 0..steps {
-                s.step_timed(&mut stages)?;
-            }
-            Ok(())
+            mpm_core::warm::with_warm_pool(|| {
+                for _ in 0..steps {
+                    s.step_timed(&mut stages)?;
+                }
+                Ok(())
+            })
         })?;
         let particles = s.particles.len();
         Ok(SmallRun {

@@ -5,6 +5,8 @@ use super::Solver;
 use crate::failure::{Cause, SimulationError};
 use crate::grain;
 use crate::sum::fixed_sum;
+use crate::warm;
+use nalgebra::SVector;
 use rayon::prelude::*;
 
 impl<const D: usize> Solver<D> {
@@ -17,38 +19,41 @@ impl<const D: usize> Solver<D> {
         let bounds = watchdog.map(|w| w.bounds_at(self.time));
         let p = &mut self.particles;
         let s = &self.scratch;
-        let whole = grain::light(p.len());
-        let failure = p
-            .position
-            .par_iter_mut()
+        let cut = grain::light(p.len());
+        let points = (p.position.par_iter_mut())
             .zip(s.grid_velocity.par_iter())
             .zip(p.velocity.par_iter())
-            .enumerate()
-            .with_min_len(whole)
-            .filter_map(|(i, ((x, vg), v))| {
-                *x += vg * dt;
-                if !x.iter().all(|c| c.is_finite()) {
-                    return Some((i, Cause::NonFinite { what: "position" }));
+            .enumerate();
+        let check = |(i, ((x, vg), v)): (usize, ((&mut SVector<f64, D>, _), _))| {
+            *x += vg * dt;
+            if !x.iter().all(|c| c.is_finite()) {
+                return Some((i, Cause::NonFinite { what: "position" }));
+            }
+            if let Some(cause) = watchdog
+                .zip(bounds)
+                .and_then(|(w, b)| w.check_point(x, v, b))
+            {
+                return Some((i, cause));
+            }
+            if let Some((lo, hi)) = domain {
+                if (0..D).any(|k| x[k] < lo[k] || x[k] > hi[k]) {
+                    return Some((
+                        i,
+                        Cause::LeftDomain {
+                            position: x.iter().cloned().collect(),
+                        },
+                    ));
                 }
-                if let Some(cause) = watchdog
-                    .zip(bounds)
-                    .and_then(|(w, b)| w.check_point(x, v, b))
-                {
-                    return Some((i, cause));
-                }
-                if let Some((lo, hi)) = domain {
-                    if (0..D).any(|k| x[k] < lo[k] || x[k] > hi[k]) {
-                        return Some((
-                            i,
-                            Cause::LeftDomain {
-                                position: x.iter().cloned().collect(),
-                            },
-                        ));
-                    }
-                }
-                None
-            })
-            .min_by_key(|(i, _)| *i);
+            }
+            None
+        };
+        let failure = warm::fold(
+            points,
+            cut,
+            None,
+            |first, point| first.or_else(|| check(point)),
+            Option::or,
+        );
         if let Some((i, cause)) = failure {
             return Err(self.failure(Some(i), cause));
         }

@@ -11,6 +11,7 @@ use super::Solver;
 use crate::bar::ContactSprings;
 use crate::contact::{candidate_force, Candidate, ContactForce};
 use crate::grain;
+use crate::warm;
 use nalgebra::SVector;
 use rayon::prelude::*;
 
@@ -57,44 +58,39 @@ impl<const D: usize> Solver<D> {
                 );
                 let turn = (later.rotation - pose.rotation).norm();
                 let max_speed = *max_speed.get_or_insert_with(|| {
-                    (p.velocity.par_iter())
-                        .with_min_len(grain::light(p.len()))
-                        .map(|v| v.norm())
-                        .reduce(|| 0.0, f64::max)
+                    let speeds = p.velocity.par_iter();
+                    let fastest = |most: f64, v: &SVector<f64, D>| most.max(v.norm());
+                    warm::fold(speeds, grain::light(p.len()), 0.0, fastest, f64::max)
                 });
                 let margin = h
                     + 2.0 * interval as f64 * dt * max_speed
                     + (later.translation - pose.translation).norm()
                     + turn * reach;
-                let candidates: Vec<usize> = (0..p.len())
-                    .into_par_iter()
-                    .with_min_len(grain::light(p.len()))
-                    .filter(|&i| {
-                        let xb = pose.to_body(&p.position[i]);
-                        match body.bounds {
-                            Some((c, r)) => (xb - c).norm() < r + margin,
-                            None => body.nearest_plane(&xb).0 < margin,
-                        }
-                    })
-                    .collect();
+                let near = |i: usize| {
+                    let xb = pose.to_body(&p.position[i]);
+                    let near = match body.bounds {
+                        Some((c, r)) => (xb - c).norm() < r + margin,
+                        None => body.nearest_plane(&xb).0 < margin,
+                    };
+                    near.then_some(i)
+                };
+                let points = (0..p.len()).into_par_iter();
+                let candidates = warm::filter_map(points, grain::light(p.len()), near);
                 rc.contact.set_candidates(candidates);
             }
             let c = &mut rc.contact;
-            let forces: Vec<Option<ContactForce<D>>> = c
-                .candidates
-                .par_iter()
-                .zip(c.attachment.par_iter_mut())
-                .with_min_len(grain::light(p.len()))
-                .map(|(&i, a)| {
-                    let point = Candidate {
-                        x: &p.position[i],
-                        mass: p.mass[i],
-                        f: &p.deformation[i],
-                        half_size: &p.half_size[i],
-                    };
-                    candidate_force(body, &pose, point, a)
-                })
-                .collect();
+            let candidates = c.candidates.par_iter().zip(c.attachment.par_iter_mut());
+            let force = |(&i, a): (&usize, &mut _)| {
+                let point = Candidate {
+                    x: &p.position[i],
+                    mass: p.mass[i],
+                    f: &p.deformation[i],
+                    half_size: &p.half_size[i],
+                };
+                candidate_force(body, &pose, point, a)
+            };
+            let cut = grain::light(p.len());
+            let forces = warm::filter_map(candidates, cut, |candidate| Some(force(candidate)));
             c.force = SVector::zeros();
             c.active = 0;
             // the springs a bar-driven face pushes on, along its axis

@@ -14,6 +14,7 @@ use crate::grid::Grid;
 use crate::kinematics::Kinematics;
 use crate::sum::fixed_sum;
 use crate::viscosity::BulkViscosity;
+use crate::warm;
 use crate::weights::{Stencil, WeightCache};
 use materials::{Material, State};
 use nalgebra::{Matrix3, SMatrix, SVector};
@@ -198,10 +199,10 @@ impl<const D: usize> Solver<D> {
             let r = block.range.clone();
             // the material update is always split, a piece at a time; a velocity update
             // alone is light
-            let (least, most) = if deformation {
-                (1, 1)
+            let cut = if deformation {
+                grain::MATERIAL
             } else {
-                (grain::light(p.len()).div_ceil(piece), usize::MAX)
+                grain::light(p.len()).per_item()
             };
             let update = Deformation {
                 material: &*block.material,
@@ -215,7 +216,7 @@ impl<const D: usize> Solver<D> {
             // a failure travels boxed: the per-piece Option stays one word wide instead of
             // a whole `Cause` copied through the reduction (≈ 7 % of a small model's step,
             // issue 15)
-            let failure = (
+            let pieces = (
                 p.position[r.clone()].par_chunks(piece),
                 p.reference_position[r.clone()].par_chunks(piece),
                 p.velocity[r.clone()].par_chunks_mut(piece),
@@ -228,49 +229,55 @@ impl<const D: usize> Solver<D> {
                 s.work[r.clone()].par_chunks_mut(piece),
             )
                 .into_par_iter()
-                .enumerate()
-                .with_min_len(least)
-                .with_max_len(most)
-                .filter_map(
-                    |(c, (x, x_ref, v, v0, volume, f, sigma, state, v_grid, work))| {
-                        let mut points = Piece {
-                            first: r.start + c * piece,
-                            x,
-                            x_ref,
-                            v,
-                            v0,
-                            volume,
-                            f,
-                            sigma,
-                            state,
-                            v_grid,
-                            work,
-                        };
-                        let (n, mut failure) = (points.v.len(), None);
-                        let (from, motion) = ((grid, weights), motion.then_some(dt));
-                        if !deformation {
-                            for j in 0..n {
-                                points.advance(j, from, motion, &mut failure);
-                            }
-                            return failure;
+                .enumerate();
+            let piece_failure = |(c, (x, x_ref, v, v0, volume, f, sigma, state, v_grid, work))| {
+                let mut points = Piece {
+                    first: r.start + c * piece,
+                    x,
+                    x_ref,
+                    v,
+                    v0,
+                    volume,
+                    f,
+                    sigma,
+                    state,
+                    v_grid,
+                    work,
+                };
+                let (n, mut failure) = (points.v.len(), None);
+                let (from, motion) = ((grid, weights), motion.then_some(dt));
+                if !deformation {
+                    for j in 0..n {
+                        points.advance(j, from, motion, &mut failure);
+                    }
+                    return failure;
+                }
+                let mut f_new = [Matrix3::zeros(); grain::MATERIAL_PIECE];
+                let mut kinematic = [None; grain::MATERIAL_PIECE];
+                for j in 0..n {
+                    if let Some((vg, l)) = points.advance(j, from, motion, &mut failure) {
+                        let x = (&points.x[j], &points.x_ref[j]);
+                        match update.kinematic(&l, &vg, x, &points.f[j], &mut f_new[j]) {
+                            Ok(ok) => kinematic[j] = Some(ok),
+                            Err(e) => earliest(&mut failure, points.first + j, e),
                         }
-                        let mut f_new = [Matrix3::zeros(); grain::MATERIAL_PIECE];
-                        let mut kinematic = [None; grain::MATERIAL_PIECE];
-                        for j in 0..n {
-                            if let Some((vg, l)) = points.advance(j, from, motion, &mut failure) {
-                                let x = (&points.x[j], &points.x_ref[j]);
-                                match update.kinematic(&l, &vg, x, &points.f[j], &mut f_new[j]) {
-                                    Ok(ok) => kinematic[j] = Some(ok),
-                                    Err(e) => earliest(&mut failure, points.first + j, e),
-                                }
-                            }
-                        }
-                        let batch = (&f_new[..n], &kinematic[..n]);
-                        update.update(&mut points, batch, &mut failure);
-                        failure
-                    },
-                )
-                .min_by_key(|(i, _)| *i);
+                    }
+                }
+                let batch = (&f_new[..n], &kinematic[..n]);
+                update.update(&mut points, batch, &mut failure);
+                failure
+            };
+            let first_of = |a: Failure, b: Failure| match (&a, &b) {
+                (Some((i, _)), Some((j, _))) if j < i => b,
+                _ => a.or(b),
+            };
+            let failure = warm::fold(
+                pieces,
+                cut,
+                None,
+                |first, piece| first_of(first, piece_failure(piece)),
+                first_of,
+            );
             if first_failure.is_none() {
                 first_failure = failure.map(|(i, cause)| (i, *cause));
             }

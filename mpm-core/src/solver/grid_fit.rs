@@ -9,6 +9,7 @@ use crate::grain;
 use crate::shape::{
     CpGimp, CpGimpAnalytic, Cpdi, CpdiHex, Kernel, Linear, Point, Reach, ShapeFunction, UGimp,
 };
+use crate::warm;
 use crate::weights::Domains;
 use materials::limits::GRID_NODES;
 use nalgebra::SVector;
@@ -67,27 +68,14 @@ impl<const D: usize> Solver<D> {
         let shift = self.shift.as_mut().map_or(SVector::zeros(), |s| s.sample());
         self.grid.origin = self.settings.origin + shift;
         let x = &self.particles.position;
-        let (lo, hi) = x
-            .par_iter()
-            .with_min_len(grain::light(x.len()))
-            .fold(
-                || {
-                    (
-                        SVector::<f64, D>::repeat(f64::INFINITY),
-                        SVector::<f64, D>::repeat(f64::NEG_INFINITY),
-                    )
-                },
-                |(lo, hi), p| (lo.inf(p), hi.sup(p)),
-            )
-            .reduce(
-                || {
-                    (
-                        SVector::repeat(f64::INFINITY),
-                        SVector::repeat(f64::NEG_INFINITY),
-                    )
-                },
-                |a, b| (a.0.inf(&b.0), a.1.sup(&b.1)),
-            );
+        type Bounds<const D: usize> = (SVector<f64, D>, SVector<f64, D>);
+        let none = (
+            SVector::<f64, D>::repeat(f64::INFINITY),
+            SVector::<f64, D>::repeat(f64::NEG_INFINITY),
+        );
+        let with = |(lo, hi): Bounds<D>, p: &SVector<f64, D>| (lo.inf(p), hi.sup(p));
+        let both = |a: Bounds<D>, b: Bounds<D>| (a.0.inf(&b.0), a.1.sup(&b.1));
+        let (lo, hi) = warm::fold(x.par_iter(), grain::light(x.len()), none, with, both);
         let (cmin, cmax) = (self.grid.cell_of(&lo), self.grid.cell_of(&hi));
         let (pad, support) = (reach.pad, reach.support + reach.pad);
         let nodes: f64 = (0..D)
@@ -114,30 +102,27 @@ impl<const D: usize> Solver<D> {
             return (Reach::CELL, 0.0, first);
         }
         let (p, inv_h) = (&self.particles, &self.grid.inv_spacing);
-        let whole = grain::light(p.len());
-        let (extent, widest) = range
-            .into_par_iter()
-            .with_min_len(whole)
-            .map(|i| {
-                let point = Point {
-                    xi: SVector::zeros(),
-                    half: &p.half_size[i],
-                    f: &p.deformation[i],
-                    hex: p.hex.get(i),
-                    inv_h,
-                };
-                (K::extent(&point).max(), i)
-            })
-            .reduce(
-                || (0.0, first),
-                |a, b| {
-                    if b.0 > a.0 || (b.0 == a.0 && b.1 < a.1) {
-                        b
-                    } else {
-                        a
-                    }
-                },
-            );
+        let extent = |i: usize| {
+            let point = Point {
+                xi: SVector::zeros(),
+                half: &p.half_size[i],
+                f: &p.deformation[i],
+                hex: p.hex.get(i),
+                inv_h,
+            };
+            (K::extent(&point).max(), i)
+        };
+        // the largest extent, the first point of it
+        let wider = |a: (f64, usize), b: (f64, usize)| {
+            if b.0 > a.0 || (b.0 == a.0 && b.1 < a.1) {
+                b
+            } else {
+                a
+            }
+        };
+        let cut = grain::light(p.len());
+        let widest = |a, i| wider(a, extent(i));
+        let (extent, widest) = warm::fold(range.into_par_iter(), cut, (0.0, first), widest, wider);
         (Reach::of(extent), extent, widest)
     }
 }

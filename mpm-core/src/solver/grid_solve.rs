@@ -7,6 +7,7 @@ use super::Solver;
 use crate::boundary::VelocityBc;
 use crate::grain;
 use crate::grid::Node;
+use crate::warm;
 use nalgebra::SVector;
 use rayon::prelude::*;
 
@@ -100,30 +101,24 @@ impl<const D: usize> Solver<D> {
                 .collect(),
         };
         let meta = self.grid.clone_meta();
-        let whole = grain::light(self.particles.len());
-        let work: Vec<ChunkWork> = self
-            .grid
-            .nodes
-            .par_chunks_mut(CHUNK)
-            .enumerate()
-            .with_min_len(whole)
-            .map(|(chunk, nodes)| {
-                let mut w = (0.0, 0.0, 0.0);
-                for (j, n) in nodes.iter_mut().enumerate() {
-                    if n.mass <= 0.0 {
-                        n.velocity = SVector::zeros();
-                        n.acceleration = SVector::zeros();
-                        continue;
-                    }
-                    let v_old = solve.solve(n, &mut w);
-                    if !solve.bcs.is_empty() {
-                        let x = meta.node_position(chunk * CHUNK + j);
-                        solve.constrain(n, &x, &meta.spacing, &v_old, &mut w);
-                    }
+        let cut = grain::light(self.particles.len()).per_item();
+        let chunks = self.grid.nodes.par_chunks_mut(CHUNK).enumerate();
+        let work = warm::filter_map(chunks, cut, |(chunk, nodes): (usize, &mut [Node<D>])| {
+            let mut w = (0.0, 0.0, 0.0);
+            for (j, n) in nodes.iter_mut().enumerate() {
+                if n.mass <= 0.0 {
+                    n.velocity = SVector::zeros();
+                    n.acceleration = SVector::zeros();
+                    continue;
                 }
-                w
-            })
-            .collect();
+                let v_old = solve.solve(n, &mut w);
+                if !solve.bcs.is_empty() {
+                    let x = meta.node_position(chunk * CHUNK + j);
+                    solve.constrain(n, &x, &meta.spacing, &v_old, &mut w);
+                }
+            }
+            Some(w)
+        });
         if accelerate {
             for (damping, boundary, boundary_abs) in work {
                 self.energies.external += damping;

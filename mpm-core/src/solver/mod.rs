@@ -294,13 +294,15 @@ impl<const D: usize> Solver<D> {
         t_end: f64,
         observers: &mut [&mut dyn Observer<D>],
     ) -> Result<(), RunError> {
-        while self.time < t_end - 0.5 * self.dt {
-            self.step()?;
-            for o in observers.iter_mut() {
-                o.observe(self)?;
+        crate::warm::with_warm_pool(|| {
+            while self.time < t_end - 0.5 * self.dt {
+                self.step()?;
+                for o in observers.iter_mut() {
+                    o.observe(self)?;
+                }
             }
-        }
-        Ok(())
+            Ok(())
+        })
     }
 }
 
@@ -457,13 +459,13 @@ mod tests {
         assert!(s.time > 0.01, "the ramp ends inside the run ({} s)", s.time);
     }
 
-    /// 200 steps on 1, 2 and 4 threads, bit for bit: a model below
-    /// `grain::LIGHT_PARALLEL_FROM` points (only its material update is split) and one
-    /// above it (every loop split).
+    /// 200 steps on 1, 2 and 4 threads, bit for bit, with the pool cold and warm
+    /// (`warm`): a model below `grain::LIGHT_PARALLEL_FROM` points (in a cold pool only
+    /// its material update is split) and one above it (every loop split).
     #[test]
     fn results_do_not_depend_on_the_thread_count() {
         for (spacing, split) in [(0.05, false), (0.0345, true)] {
-            let with = |threads| {
+            let with = |threads, warm: bool| {
                 let pool = rayon::ThreadPoolBuilder::new()
                     .num_threads(threads)
                     .build()
@@ -476,17 +478,23 @@ mod tests {
                         "{} points",
                         s.particles.len()
                     );
-                    for _ in 0..200 {
-                        s.step().unwrap();
+                    let steps = |s: &mut Solver<3>| (0..200).for_each(|_| s.step().unwrap());
+                    if warm {
+                        crate::warm::with_warm_pool(|| steps(&mut s));
+                    } else {
+                        steps(&mut s);
                     }
                     outcome(&s)
                 })
             };
-            let (one, two, four) = (with(1), with(2), with(4));
-            assert!(one.0 == two.0 && one.0 == four.0, "positions differ");
-            assert!(one.1 == two.1 && one.1 == four.1, "stresses differ");
-            assert_eq!(one.2.to_bits(), two.2.to_bits());
-            assert_eq!(one.2.to_bits(), four.2.to_bits());
+            let one = with(1, false);
+            for (threads, warm) in [(2, false), (4, false), (2, true), (4, true)] {
+                let other = with(threads, warm);
+                let run = format!("{threads} threads, warm {warm}");
+                assert!(one.0 == other.0, "positions differ ({run})");
+                assert!(one.1 == other.1, "stresses differ ({run})");
+                assert_eq!(one.2.to_bits(), other.2.to_bits(), "{run}");
+            }
         }
     }
 

@@ -9,6 +9,7 @@ use crate::grain;
 use crate::grid::Node;
 use crate::kinematics::Kinematics;
 use crate::particles::Particles;
+use crate::warm;
 use crate::weights::WeightCache;
 use nalgebra::{SMatrix, SVector};
 use rayon::prelude::*;
@@ -82,15 +83,12 @@ impl<const D: usize> Solver<D> {
                 body_force: self.settings.body_force,
                 kinematics: self.settings.kinematics,
             };
-            let whole = grain::light(self.particles.len());
-            parts
-                .into_par_iter()
-                .with_min_len(whole)
-                .for_each(|(k, start, nodes)| {
-                    for &i in &s.order[s.slab_start[k]..s.slab_start[k + 1]] {
-                        sources.add(i as usize, t, start, nodes);
-                    }
-                });
+            let cut = grain::light(self.particles.len()).per_item();
+            warm::for_each(parts.into_par_iter(), cut, |(k, start, nodes)| {
+                for &i in &s.order[s.slab_start[k]..s.slab_start[k + 1]] {
+                    sources.add(i as usize, t, start, nodes);
+                }
+            });
         }
         if t.force {
             self.add_surface_loads();
@@ -98,23 +96,19 @@ impl<const D: usize> Solver<D> {
     }
 
     fn clear_nodes(&mut self, t: Transfer) {
-        let whole = grain::light(self.particles.len());
-        self.grid
-            .nodes
-            .par_iter_mut()
-            .with_min_len(whole)
-            .for_each(|n| {
-                if t.mass {
-                    n.mass = 0.0;
-                    n.heaviest = 0.0;
-                }
-                if t.momentum {
-                    n.momentum = SVector::zeros();
-                }
-                if t.force {
-                    n.force = SVector::zeros();
-                }
-            });
+        let cut = grain::light(self.particles.len());
+        warm::for_each(self.grid.nodes.par_iter_mut(), cut, |n: &mut Node<D>| {
+            if t.mass {
+                n.mass = 0.0;
+                n.heaviest = 0.0;
+            }
+            if t.momentum {
+                n.momentum = SVector::zeros();
+            }
+            if t.force {
+                n.force = SVector::zeros();
+            }
+        });
     }
 
     /// Stable counting sort of the particles by the slab of their first stencil node.

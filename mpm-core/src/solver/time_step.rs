@@ -9,6 +9,8 @@
 
 use super::Solver;
 use crate::grain;
+use crate::warm;
+use nalgebra::SVector;
 use rayon::prelude::*;
 
 /// A change of Δt during a run, or a fixed Δt found beyond the CFL limit.
@@ -53,11 +55,9 @@ impl<const D: usize> Solver<D> {
             .iter()
             .map(|b| {
                 let c = b.wave_speed();
-                v[b.range.clone()]
-                    .par_iter()
-                    .with_min_len(grain::light(v.len()))
-                    .map(|v| c + v.norm())
-                    .reduce(|| 0.0, f64::max)
+                let fastest = |most: f64, v: &SVector<f64, D>| most.max(c + v.norm());
+                let points = v[b.range.clone()].par_iter();
+                warm::fold(points, grain::light(v.len()), 0.0, fastest, f64::max)
             })
             .fold(0.0, f64::max)
     }
