@@ -29,11 +29,11 @@ pub const WARM_LIGHT_PARALLEL_FROM: usize = 1_000;
 pub const LIGHT_PIECE: usize = 256;
 
 /// The piece of the material update (and of the point loop of a gather): its points'
-/// material updates are one batch (`Material::update_batch`). Its cost is uneven (a plastic return costs
-/// 5-10 elastic updates) and clustered (the plastic zone of a Taylor bar is its impact
-/// end), so a thread that is done takes the rest of another's pieces.
-/// Axisymmetric Taylor bar, 2 940 points, 2 threads: material stage 724 → 656 µs per step
-/// (597 µs is half the 1-thread time); 512 points gave 677 µs, 32 points 656 µs.
+/// material updates are one batch (`Material::update_batch`). Its cost is uneven (a
+/// plastic return costs 5-10 elastic updates) and clustered (the plastic zone of a Taylor
+/// bar is its impact end), so a thread that is done takes the rest of another's pieces.
+/// Axisymmetric Taylor bar, 2 940 points, warm pool: 884 µs per step at 1 thread, 466 µs
+/// at 2 (442 µs is half); 64 and 32 points were no better within the VM's noise.
 pub const MATERIAL_PIECE: usize = 128;
 
 /// The material update's loop, over pieces of `MATERIAL_PIECE` points: a piece at a time,

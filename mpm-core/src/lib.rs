@@ -7,7 +7,9 @@
 //! implementation through the const generic dimension `D`. Rigid bodies act through
 //! penalty contact with Coulomb friction. SI units throughout.
 //!
-//! A step is a list of named stages (`solver::scheme`); weights come from a `shape::Kernel`
+//! A step is a list of named stages (`solver::scheme`); its loops are cut into fixed pieces
+//! (`grain`) and run on the calling thread, through rayon or by a warm team of spinning
+//! threads (`warm`), with the same bits either way; weights come from a `shape::Kernel`
 //! once per step (`weights`); motions and conditions follow `TimeSignal`s; outputs and
 //! fits read the run through `observer::Observer`; `Template` runs one discretized model
 //! with many material parameter sets. The verification catalogue lives with the

@@ -36,6 +36,11 @@ thread_local! {
 /// them (the pool's threads busy with other work, e.g. other models of a parallel loop).
 const START_WAIT: Duration = Duration::from_millis(20);
 
+/// An idle spinner looks for rayon jobs once in this many rounds, and otherwise only
+/// reads `published` and pauses (`spin_loop`), leaving the core's shared resources to the
+/// other thread where the two are hardware threads of one core.
+const RAYON_EVERY: u32 = 64;
+
 /// Whether the calling thread runs inside `with_warm_pool` with its spinners started.
 pub fn is_warm() -> bool {
     TEAM.with(|t| !t.get().is_null())
@@ -302,7 +307,7 @@ impl Team {
         while self.started.load(Ordering::Acquire) < others && !self.done.load(Ordering::Acquire) {
             spin_loop();
         }
-        let mut seen = 0;
+        let (mut seen, mut idle) = (0, 0u32);
         while !self.done.load(Ordering::Acquire) {
             let published = self.published.load(Ordering::Acquire);
             if published != seen {
@@ -311,7 +316,12 @@ impl Team {
                 if let Some(job) = job.filter(|job| w < job.shares.len()) {
                     job.work(w);
                 }
-            } else if rayon::yield_now() != Some(rayon::Yield::Executed) {
+                idle = 0;
+            } else if idle % RAYON_EVERY == 0 && rayon::yield_now() == Some(rayon::Yield::Executed)
+            {
+                idle = 0;
+            } else {
+                idle = idle.wrapping_add(1);
                 spin_loop();
             }
         }

@@ -195,28 +195,32 @@ fn measure(
         let (mut total, mut material) = (0.0, 0.0);
         let mut plastic = 0;
         let mut before = Vec::new();
-        for _ in 0..steps {
-            before.clone_from(&s.blocks[0].state);
-            let start = Instant::now();
-            s.step()?;
-            total += start.elapsed().as_secs_f64();
-            let block = &s.blocks[0];
-            plastic += (block.state.iter().zip(&before))
-                .filter(|(new, old)| new.alpha > old.alpha)
-                .count();
-            // this step's material updates again, alone: its new F on the old history, in
-            // the step's batches
-            let start = Instant::now();
-            let piece = mpm_core::grain::MATERIAL_PIECE;
-            (s.particles.deformation.par_chunks(piece))
-                .zip(before.par_chunks(piece))
-                .for_each(|(f, st)| {
-                    block.material.update_batch(f, s.dt, st, &mut |_, r| {
-                        black_box(r.ok());
-                    })
-                });
-            material += start.elapsed().as_secs_f64();
-        }
+        // stepped as a run steps (`Solver::run_until`): in a warm pool
+        mpm_core::warm::with_warm_pool(|| -> Result<()> {
+            for _ in 0..steps {
+                before.clone_from(&s.blocks[0].state);
+                let start = Instant::now();
+                s.step()?;
+                total += start.elapsed().as_secs_f64();
+                let block = &s.blocks[0];
+                plastic += (block.state.iter().zip(&before))
+                    .filter(|(new, old)| new.alpha > old.alpha)
+                    .count();
+                // this step's material updates again, alone: its new F on the old history, in
+                // the step's batches
+                let start = Instant::now();
+                let piece = mpm_core::grain::MATERIAL_PIECE;
+                (s.particles.deformation.par_chunks(piece))
+                    .zip(before.par_chunks(piece))
+                    .for_each(|(f, st)| {
+                        block.material.update_batch(f, s.dt, st, &mut |_, r| {
+                            black_box(r.ok());
+                        })
+                    });
+                material += start.elapsed().as_secs_f64();
+            }
+            Ok(())
+        })?;
         Ok((
             Measured {
                 rate: (n * steps) as f64 / total,

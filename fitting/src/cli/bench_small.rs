@@ -59,7 +59,7 @@ fn timed(f: impl FnOnce() -> Result<()>) -> Result<(f64, f64, f64)> {
 }
 
 /// One model stepped `warm_up` steps untimed, then `steps` timed (each stage's time too),
-/// on `threads` threads.
+/// on `threads` threads, in a warm pool as a run steps (`Solver::run_until`).
 pub fn alone(threads: usize, steps: usize, warm_up: usize) -> Result<SmallRun> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)

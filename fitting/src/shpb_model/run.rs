@@ -40,10 +40,12 @@ pub struct ShpbRun {
     pub wall_s: f64,
 }
 
-/// Points from which a run uses the caller's thread pool (a 3D model: the quarter at 40
-/// points along has 51 720); below, a model of a few thousand points runs on one thread
-/// (issue 15), and a fit runs its models side by side. The results do not depend on it
-/// (mpm-core's sums are the same on any thread count).
+/// Points from which a run among others (`run_until`: a fit's evaluation) uses the
+/// caller's thread pool (a 3D model: the quarter at 40 points along has 51 720); below, a
+/// model of a few thousand points runs on one thread (issue 15), and a fit runs its models
+/// side by side. A run alone (`run_observed`: `mpw simulate`) always uses the caller's pool,
+/// warm (`mpm_core::warm`). The results do not depend on it (mpm-core's loops give the
+/// same bits on any thread count).
 const PARALLEL_FROM: usize = 20_000;
 
 /// `run` on one thread, inside its own pool: a model of a few thousand points runs the
@@ -78,14 +80,19 @@ impl ShpbModel {
         self.run_until(material, self.end_s())
     }
 
-    /// Run the model with `material` from t = 0 to `end` [s] (at most the signals' end):
-    /// the run is explicit, so its history up to `end` is that of the whole run.
+    /// Run the model with `material` from t = 0 to `end` [s] (at most the signals' end), as
+    /// one of several run side by side (a small model on one thread, `PARALLEL_FROM`): the
+    /// run is explicit, so its history up to `end` is that of the whole run.
     pub fn run_until(&self, material: Arc<dyn Material>, end: f64) -> anyhow::Result<ShpbRun> {
-        self.run_observed(material, end, &mut [])
+        let run = || self.run_observed(material, end, &mut []);
+        match self.particles() < PARALLEL_FROM {
+            true => one_thread(run),
+            false => run(),
+        }
     }
 
-    /// `run_until`, also reporting every step (and the initial state) to `observers` (VTK
-    /// snapshots, progress).
+    /// `run_until` as a run alone, on the caller's pool, also reporting every step (and
+    /// the initial state) to `observers` (VTK snapshots, progress).
     pub fn run_observed(
         &self,
         material: Arc<dyn Material>,
@@ -93,7 +100,7 @@ impl ShpbModel {
         observers: &mut [&mut dyn AnyObserver],
     ) -> anyhow::Result<ShpbRun> {
         let end = end.min(self.end_s());
-        let run = || match &self.template {
+        match &self.template {
             Discretized::Axisymmetric(t) => self.run_inline(t, material, end, &mut |s| {
                 observers
                     .iter_mut()
@@ -104,10 +111,6 @@ impl ShpbModel {
                     .iter_mut()
                     .try_for_each(|o| Observer::<3>::observe(&mut **o, s))
             }),
-        };
-        match self.particles() < PARALLEL_FROM {
-            true => one_thread(run),
-            false => run(),
         }
     }
 

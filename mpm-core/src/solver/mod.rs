@@ -288,7 +288,8 @@ impl<const D: usize> Solver<D> {
     }
 
     /// Run until `t_end`, reporting the state to every observer after every step (the
-    /// initial state is the caller's to report).
+    /// initial state is the caller's to report), in a warm pool (`warm`: the pool's other
+    /// threads spin for the step's loops until the run ends).
     pub fn run_until(
         &mut self,
         t_end: f64,
