@@ -191,7 +191,7 @@ struct Job {
     piece: *const (dyn Fn(usize) + Sync),
     count: usize,
     /// each worker's unclaimed pieces, front and back packed (`span`)
-    shares: Vec<AtomicU64>,
+    shares: Vec<Share>,
     finished: AtomicUsize,
     panic: Mutex<Option<Box<dyn Any + Send>>>,
 }
@@ -199,6 +199,12 @@ struct Job {
 // SAFETY: `piece` is `Sync` and outlives every call made through it (see `piece`).
 unsafe impl Send for Job {}
 unsafe impl Sync for Job {}
+
+/// A worker's unclaimed pieces, on a cache line of its own (128 bytes: two 64-byte lines
+/// where the prefetcher fetches pairs), so that claims by different workers do not
+/// contend.
+#[repr(align(128))]
+struct Share(AtomicU64);
 
 /// Pieces `front..back` packed in a u64.
 fn span(front: usize, back: usize) -> u64 {
@@ -231,7 +237,7 @@ impl Job {
     fn work(&self, w: usize) {
         let workers = self.shares.len();
         for victim in (0..workers).map(|v| (w + v) % workers) {
-            while let Some(k) = claim(&self.shares[victim], victim != w) {
+            while let Some(k) = claim(&self.shares[victim].0, victim != w) {
                 // SAFETY: piece k was claimed by this worker alone, and `Team::run` does
                 // not return while a claimed piece is unfinished.
                 let run = catch_unwind(AssertUnwindSafe(|| unsafe { (*self.piece)(k) }));
@@ -262,7 +268,8 @@ impl Team {
             piece,
             count,
             shares: (0..workers)
-                .map(|w| AtomicU64::new(span(w * count / workers, (w + 1) * count / workers)))
+                .map(|w| span(w * count / workers, (w + 1) * count / workers))
+                .map(|s| Share(AtomicU64::new(s)))
                 .collect(),
             finished: AtomicUsize::new(0),
             panic: Mutex::new(None),
