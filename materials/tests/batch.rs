@@ -12,7 +12,7 @@ type Update = Result<(Matrix3<f64>, State), MaterialError>;
 fn f_of(k: usize, step: usize) -> Matrix3<f64> {
     let e = 4e-4 * step as f64 * (0.5 + 0.13 * k as f64);
     let s = 0.3 * e * ((k % 5) as f64 - 2.0);
-    let z = if k % 2 == 0 { 0.0 } else { 0.2 * s };
+    let z = if k.is_multiple_of(2) { 0.0 } else { 0.2 * s };
     Matrix3::new(
         1.0 - e,
         s,

@@ -81,6 +81,15 @@ where
     fold(iter, cut, (), |(), item| f(item), |(), ()| ());
 }
 
+/// `f`'s values, in item order.
+pub fn map<I, T>(iter: I, cut: Cut, f: impl Fn(I::Item) -> T + Sync) -> Vec<T>
+where
+    I: IndexedParallelIterator,
+    T: Clone + Send + Sync,
+{
+    filter_map(iter, cut, |item| Some(f(item)))
+}
+
 /// `f`'s values that are not `None`, in item order.
 pub fn filter_map<I, T>(iter: I, cut: Cut, f: impl Fn(I::Item) -> Option<T> + Sync) -> Vec<T>
 where
@@ -320,7 +329,7 @@ impl Team {
             if published != seen {
                 seen = published;
                 let job = self.slot().clone();
-                if let Some(job) = job.filter(|job| w < job.shares.len()) {
+                if let Some(job) = job {
                     job.work(w);
                 }
                 idle = 0;

@@ -11,8 +11,9 @@
 //! that, and the fraction of plastic updates (α grew) in the measured steps is reported.
 //! Only the `step` calls are timed. After each measured step its material updates are
 //! replayed alone (the new F on the history before the step, so the same updates, plastic
-//! or not; in the step's pieces, by `update_batch`) on the same threads and timed: that is the material share; the rest of a step
-//! is transfers (scatter, grid solve, gather, contact).
+//! or not; in the step's pieces, by `update_batch`) on the same threads and timed: that is
+//! the material share; the rest of a step is transfers (scatter, grid solve, gather,
+//! contact).
 
 use super::bench_small::{alone, concurrent, median, SmallRun};
 use anyhow::Result;

@@ -51,7 +51,11 @@ impl<const D: usize> Solver<D> {
             points,
             cut,
             None,
-            |first, point| first.or_else(|| check(point)),
+            // every point moves, also past a failing one: the run's last state is written
+            |first, point| {
+                let found = check(point);
+                first.or(found)
+            },
             Option::or,
         );
         if let Some((i, cause)) = failure {

@@ -90,7 +90,7 @@ impl<const D: usize> Solver<D> {
                 candidate_force(body, &pose, point, a)
             };
             let cut = grain::light(p.len());
-            let forces = warm::filter_map(candidates, cut, |candidate| Some(force(candidate)));
+            let forces = warm::map(candidates, cut, force);
             c.force = SVector::zeros();
             c.active = 0;
             // the springs a bar-driven face pushes on, along its axis

@@ -104,10 +104,17 @@ struct Kinematic {
 /// The earliest failing point of a piece (index in the model) and its cause.
 type Failure = Option<(usize, Box<Cause>)>;
 
-fn earliest(failure: &mut Failure, i: usize, cause: Cause) {
-    if failure.as_ref().is_none_or(|(j, _)| i < *j) {
-        *failure = Some((i, Box::new(cause)));
+/// The failure of the lower point index of `a` and `b`.
+fn earlier(a: Failure, b: Failure) -> Failure {
+    match (&a, &b) {
+        (Some((i, _)), Some((j, _))) if j < i => b,
+        _ => a.or(b),
     }
+}
+
+/// Keep point `i`'s `cause` in `failure` if it is the earliest so far.
+fn earliest(failure: &mut Failure, i: usize, cause: Cause) {
+    *failure = earlier(failure.take(), Some((i, Box::new(cause))));
 }
 
 impl Deformation<'_> {
@@ -267,16 +274,12 @@ impl<const D: usize> Solver<D> {
                 update.update(&mut points, batch, &mut failure);
                 failure
             };
-            let first_of = |a: Failure, b: Failure| match (&a, &b) {
-                (Some((i, _)), Some((j, _))) if j < i => b,
-                _ => a.or(b),
-            };
             let failure = warm::fold(
                 pieces,
                 cut,
                 None,
-                |first, piece| first_of(first, piece_failure(piece)),
-                first_of,
+                |first, piece| earlier(first, piece_failure(piece)),
+                earlier,
             );
             if first_failure.is_none() {
                 first_failure = failure.map(|(i, cause)| (i, *cause));

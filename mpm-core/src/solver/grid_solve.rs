@@ -103,7 +103,7 @@ impl<const D: usize> Solver<D> {
         let meta = self.grid.clone_meta();
         let cut = grain::light(self.particles.len()).per_item();
         let chunks = self.grid.nodes.par_chunks_mut(CHUNK).enumerate();
-        let work = warm::filter_map(chunks, cut, |(chunk, nodes): (usize, &mut [Node<D>])| {
+        let work = warm::map(chunks, cut, |(chunk, nodes): (usize, &mut [Node<D>])| {
             let mut w = (0.0, 0.0, 0.0);
             for (j, n) in nodes.iter_mut().enumerate() {
                 if n.mass <= 0.0 {
@@ -117,7 +117,7 @@ impl<const D: usize> Solver<D> {
                     solve.constrain(n, &x, &meta.spacing, &v_old, &mut w);
                 }
             }
-            Some(w)
+            w
         });
         if accelerate {
             for (damping, boundary, boundary_abs) in work {
