@@ -416,7 +416,7 @@ fn shipped_experiment_files_load() {
 }
 
 /// A value beyond the plausible range of its dimension names the row, the value as
-/// written and the likely mistake (issue 16): a stress of 2e9 "MPa" (Pa declared as MPa),
+/// written and the likely mistake: a stress of 2e9 "MPa" (Pa declared as MPa),
 /// a strain of 6 (600 %), and forces in kN declared as "MN" (10 MN over a 10 mm diameter
 /// is a stress of 127 GPa). Just inside the bounds the file reads.
 #[test]

@@ -1,4 +1,4 @@
-//! The LANL standard raw format (issue 12): a synthetic record written in that layout
+//! The LANL standard raw format: a synthetic record written in that layout
 //! (tab-separated, CRLF, Latin-1 ° and µ in key names, waveforms in volts with t0 and dt
 //! on lines 2-3, compression positive, a density in g/cm³ under a kg/m³ label, a bar
 //! block's calibrated gain that differs from the test's) reads back to the strains it was
@@ -62,7 +62,7 @@ fn metadata(bar: &fitting::experiment::Bar, specimen_mm: (f64, f64)) -> Vec<(Str
         ));
         rows.push((key("Poisson Ratio"), "0.29".into()));
         rows.push((key("Rod Sound Speed(m/s)"), format!("{c0}")));
-        // g/cm³ under a kg/m³ label, as the national-lab record of issue 12
+        // g/cm³ under a kg/m³ label, as in a published national-lab record
         rows.push((
             key("Density(kg/m^3)"),
             format!("{}", bar.density_kg_m3 / 1e3),

@@ -97,7 +97,7 @@ fn a_record_without_a_pulse_is_an_error() {
 
 /// A record whose pulses contradict the compression-negative convention is refused with
 /// what was seen, never processed with the reflected pulse taken for the incident one
-/// (issue 12: the inverted record gave exit 0 and an equilibrium ratio of 1.74); a
+/// (the inverted record gave exit 0 and an equilibrium ratio of 1.74); a
 /// reversed transmitted gauge alone is refused too.
 #[test]
 fn a_record_of_the_wrong_polarity_is_refused() {
@@ -120,7 +120,7 @@ fn a_record_of_the_wrong_polarity_is_refused() {
 }
 
 /// Calibrated delays that differ from distance / c0 (here 2 % longer, as a calibrated
-/// reflected time against √(E/ρ) in issue 12) are used for timing: a record generated
+/// reflected time against √(E/ρ) in a published record) are used for timing: a record generated
 /// with them processes back to its curve within 1 %; read with d/c0 instead, its
 /// reflected pulse arrives 2 · 0.02 · d_i/c0 = 7.9 µs later, relative to the predicted
 /// time, than with the delays stated (the arrival diagnostic reports it).

@@ -181,7 +181,7 @@ impl<L: Lane> Onset<L> {
 }
 
 /// The flow stress along the local solve of one return, in u = ln Δα
-/// (`return_principal`'s hot path): α = α_n + e^u, α̇ = e^u/Δt and θ = θ_n frozen, so the
+/// (`plasticity::return_principal`'s hot path): α = α_n + e^u, α̇ = e^u/Δt and θ = θ_n frozen, so the
 /// thermal factor is given once and the JC rate term 1 + C (u − ln(Δt α̇0)) needs no
 /// logarithm. `at` equals `FlowStress::tau_y` to round-off (tested). Lane by lane for a
 /// batch of points with one law and one Δt.

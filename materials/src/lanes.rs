@@ -1,4 +1,4 @@
-//! Several material points in lockstep (issue 15). The principal return is written once
+//! Several material points in lockstep. The principal return is written once
 //! for a lane type `L`: `f64` for one point, `F64x4` for four (simba's `WideF64x4`, SIMD
 //! arithmetic over `wide::f64x4`). Branches become lane masks (`select`), and the library
 //! functions (exp, ln, pow) are taken lane by lane from the same `f64` routines, so each

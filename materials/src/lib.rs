@@ -7,6 +7,7 @@
 
 pub mod ad;
 pub mod any_model;
+pub mod conformance;
 pub mod driver;
 pub mod elastic;
 pub mod error;
@@ -21,8 +22,7 @@ pub mod neo_hooke;
 pub mod param_file;
 pub mod params;
 pub mod plasticity;
-pub mod return_principal;
-pub mod return_reference;
+pub mod preheated;
 pub mod scalar;
 pub mod signal;
 pub mod sym_eigen;

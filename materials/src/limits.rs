@@ -2,7 +2,7 @@
 //! load path from a strain history, particles from a body and a spacing, grid nodes from
 //! particle extents, samples of a signal) is checked here before anything of that size is
 //! allocated, so that one mistyped value gives an error instead of exhausting memory
-//! (issue 16). Each limit is far above what any shipped case or real record needs and
+//!. Each limit is far above what any shipped case or real record needs and
 //! well below what would freeze a 24 GiB workstation; the error says which.
 
 use thiserror::Error;

@@ -105,7 +105,7 @@ impl Range {
         }
     }
     /// A closed range with the likely mistake behind a value outside it: the metal bounds
-    /// of a Johnson-Cook file (issue 14: E = 224.2 "Pa" ran and gave σ = 0).
+    /// of a Johnson-Cook file (E = 224.2 "Pa" ran and gave σ = 0).
     const fn plausible(lo: f64, hi: f64, hint: &'static str) -> Self {
         Range {
             hint,

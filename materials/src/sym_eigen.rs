@@ -1,5 +1,5 @@
 //! Eigen decomposition of a symmetric 3×3 matrix in closed form, exact at repeated
-//! eigenvalues (the trial be of `return_principal`, where two stretches often coincide):
+//! eigenvalues (the trial be of `plasticity::return_principal`, where two stretches often coincide):
 //!
 //! 1. B = (A − qI)/p with q = tr A/3 and p = √(tr (A − qI)²/6); the eigenvalues β of B solve
 //!    β³ − 3β − 2r = 0 with r = det B/2 ∈ [−1, 1] (Smith 1961), so β ∈ [−2, 2].

@@ -64,7 +64,7 @@ fn bad_fields_are_named_with_the_allowed_range() {
             5,
         ),
         // a Johnson-Cook material is a metal: values in the wrong unit are named with the
-        // likely mistake (issue 14: E = 224.2 ran and gave σ = 0)
+        // likely mistake (E = 224.2 ran and gave σ = 0)
         (
             GOOD.replace("E = 200e9", "E = 224.2"),
             "elastic.E",

@@ -1,5 +1,5 @@
 //! A rigid face at the end of a long elastic bar, the Kolsky bar as a 1D waveguide: the
-//! bar is not discretized, it acts on the face through its impedance (issue 11, "drive by
+//! bar is not discretized, it acts on the face through its impedance ("drive by
 //! the incident pulse alone").
 //!
 //! With the bar axis e pointing from the bar into the specimen, a wave arriving at the

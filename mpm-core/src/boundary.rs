@@ -12,7 +12,7 @@
 //!   (v̄ − p_I/m_I)/Δt, so the layer that hit the wall stops (with eq. 7.28 the bottom
 //!   layer of a Taylor bar kept −200 m/s while it sat on the wall). Two-sided conditions
 //!   keep eq. 7.28: at a symmetry plane p/m is a one-sided average of the points' field,
-//!   and the reaction form biased a homogeneous compression by 1.3e-3 (issue 8 note).
+//!   and the reaction form biased a homogeneous compression by 1.3e-3.
 //! - Spring conditions on particles near a boundary (eq. 12.1):
 //!   f_MP = −κ_BC ((x_MP)_i − (X_MP)_i) in the chosen directions i [N], which keep working
 //!   when the grid moves under a grid shift.

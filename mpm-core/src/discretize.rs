@@ -1,5 +1,5 @@
 //! Bodies from primitives: material points that carry exactly the shape's volume (and so
-//! its mass), each at the centroid of the piece of the body it stands for (issue 8: the
+//! its mass), each at the centroid of the piece of the body it stands for (the
 //! sub-grid strategy of section 8.4, one point per sub-cell whose centre lies inside,
 //! gave a 3D cylinder 3.45 % too much mass at 4 cells across the radius and an outer
 //! diameter half a spacing too large).

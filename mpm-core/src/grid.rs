@@ -19,6 +19,11 @@ pub fn floor_i64(s: f64) -> i64 {
     t - i64::from(s < t as f64)
 }
 
+/// Number of cell corners in `D` dimensions, 2^D.
+pub const fn corners(d: usize) -> usize {
+    1 << d
+}
+
 /// One grid node's temporary state.
 #[derive(Debug, Clone, Copy)]
 pub struct Node<const D: usize> {
@@ -125,7 +130,7 @@ impl<const D: usize> Grid<D> {
         std::array::from_fn(|k| {
             (0..D)
                 .map(|i| {
-                    if (k >> i) & 1 == 1 && k < crate::shape::corners(D) {
+                    if (k >> i) & 1 == 1 && k < corners(D) {
                         self.strides[i]
                     } else {
                         0

@@ -8,34 +8,31 @@
 //! penalty contact with Coulomb friction. SI units throughout.
 //!
 //! A step is a list of named stages (`solver::scheme`); its loops are cut into fixed pieces
-//! (`grain`) and run on the calling thread, through rayon or by a warm team of spinning
-//! threads (`warm`), with the same bits either way; weights come from a `shape::Kernel`
+//! and run on the calling thread, through rayon or by a warm team (`parallel`), with the
+//! same bits either way; weights come from a `shape::Kernel`
 //! once per step (`weights`); motions and conditions follow `TimeSignal`s; outputs and
-//! fits read the run through `observer::Observer`; `Template` runs one discretized model
+//! fits read the run through `solver::observer::Observer`; `Template` runs one discretized model
 //! with many material parameter sets. The verification catalogue lives with the
-//! application (`fitting::mpm_verify`).
+//! application (`mpw::verify::mpm`).
 
 pub mod bar;
 pub mod boundary;
 pub mod contact;
 pub mod discretize;
 pub mod failure;
-pub mod grain;
 pub mod grid;
 pub mod kinematics;
 pub mod material_block;
 pub mod mesh;
-pub mod observer;
+pub mod parallel;
 pub mod particles;
 pub mod rigid;
 pub mod shape;
 pub mod shift;
 pub mod solver;
-pub mod sum;
 pub mod template;
 pub mod timestep;
 pub mod viscosity;
-pub mod warm;
 pub mod watchdog;
 pub mod weights;
 

@@ -10,7 +10,7 @@
 //! α [-], θ [K], J = det F [-], body index.
 
 use crate::kinematics::Kinematics;
-use crate::observer::Observer;
+use crate::solver::observer::Observer;
 use crate::solver::Solver;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};

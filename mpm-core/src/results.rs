@@ -9,8 +9,8 @@
 //! - per control point: its final position [m].
 
 use crate::material_block::MaterialBlock;
-use crate::observer::Observer;
 use crate::output::AXES;
+use crate::solver::observer::Observer;
 use crate::solver::Solver;
 use materials::State;
 use std::io::{self, Write};

@@ -8,10 +8,10 @@
 //! `Interrupted`: its last state written, its results collected.
 
 use crate::failure::{Cause, SimulationError};
-use crate::observer::{Every, Observer};
 use crate::output::{HistoryWriter, SnapshotWriter};
 use crate::results::{self, NamedResult, RestTracker};
 use crate::scene::{Scene, Simulation};
+use crate::solver::observer::{Every, Observer};
 use crate::solver::{RunError, Solver, TimeStepChange};
 use crate::timestep::TimeStep;
 use materials::limits::TIME_STEPS;

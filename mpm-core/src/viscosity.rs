@@ -8,8 +8,7 @@
 //! grid-scale ringing behind a wave front, which the leapfrog carries undamped. In an
 //! axisymmetric bar that ringing focuses on the axis (radial waves converge there, and
 //! the first column of points moves closer to r = 0 as the grid is refined), where it
-//! drove the column next to the axis past yield in a bar that stays elastic (issue 8
-//! note). q vanishes with l, so the converged solution is unchanged; its work is part of
+//! drove the column next to the axis past yield in a bar that stays elastic. q vanishes with l, so the converged solution is unchanged; its work is part of
 //! the stress work, so the energy balance holds.
 
 /// Coefficients C₁ (linear) and C₂ (quadratic) [-].

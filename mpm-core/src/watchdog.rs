@@ -11,7 +11,7 @@
 //! - energy: the energy error K + W_int − (K0 + W_ext + W_bc) stays below a fraction of
 //!   the energy supplied (an unstable rim gains energy long before it blows up).
 //!
-//! A 3D Taylor bar whose rim went unstable (issue 8: rim points 100 mm away at 37 km/s,
+//! A 3D Taylor bar whose rim went unstable (rim points 100 mm away at 37 km/s,
 //! energy error from 0.8 J to 217 J) trips all three.
 
 use crate::failure::Cause;

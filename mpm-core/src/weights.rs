@@ -5,10 +5,9 @@
 //! (USF and MUSL map to the grid twice and back twice; positions do not move until the
 //! step's last stage).
 
-use crate::grain;
 use crate::grid::Grid;
+use crate::parallel;
 use crate::shape::{Hex, Kernel, Point, Reach};
-use crate::warm;
 use nalgebra::{Matrix3, SVector};
 use rayon::prelude::*;
 use std::ops::Range;
@@ -78,8 +77,8 @@ impl<const D: usize> WeightCache<D> {
             .zip(self.first[range].par_iter_mut())
             .zip(self.n[start * nodes..end * nodes].par_chunks_mut(nodes))
             .zip(self.grad[start * nodes..end * nodes].par_chunks_mut(nodes));
-        let cut = grain::light(positions.len());
-        warm::for_each(points, cut, |((((k, x), first), n), grad)| {
+        let cut = parallel::light(positions.len());
+        parallel::for_each(points, cut, |((((k, x), first), n), grad)| {
             let i = start + k;
             let (corner, xi) = grid.locate(x);
             let point = Point {

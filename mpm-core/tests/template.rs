@@ -8,7 +8,7 @@ use materials::param_file::parse_material;
 use materials::signal::TimeSignal;
 use materials::{Material, Model};
 use mpm_core::discretize::{fill, Shape};
-use mpm_core::observer::ForceHistory;
+use mpm_core::solver::observer::ForceHistory;
 use mpm_core::{Kinematics, RigidBody, Settings, Solver, Template, TemplateError};
 use nalgebra::Vector3;
 use std::path::Path;

@@ -113,7 +113,7 @@ impl Dimension {
 
     /// The largest magnitude [SI] that a measured column or a metadata quantity of this
     /// dimension can hold in a test of metals, and the likely mistake behind a larger
-    /// value (issue 16). Wide on purpose: it catches a mistyped cell and a wrong unit,
+    /// value. Wide on purpose: it catches a mistyped cell and a wrong unit,
     /// not an unusual test.
     pub fn plausible_magnitude(self) -> (f64, &'static str) {
         match self {

@@ -1,4 +1,4 @@
-//! What the fitted parameters owe to the model's fixed assumptions (issue 11): the MPM
+//! What the fitted parameters owe to the model's fixed assumptions: the MPM
 //! level's contact penalty κ and friction μ are chosen, not fitted. For each change of
 //! `CONTACT_CHANGES` (κ and μ halved and doubled, on every experiment with contact at once)
 //! the report gives

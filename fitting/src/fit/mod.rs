@@ -1,14 +1,9 @@
 //! Johnson-Cook parameter identification: model levels for experiments, the objective,
 //! optimizers (Nelder-Mead from argmin, Levenberg-Marquardt with the exact AD Jacobian or
-//! finite differences), staged and multi-start fits, reports and charts.
-//!
-//! `verify_cases` gives the `mpw verify` rows of this module.
-
-pub use verify::verify_cases;
+//! finite differences), staged and multi-start fits, statistics and reports.
 
 pub mod assumptions;
 pub mod bootstrap;
-pub mod charts;
 pub mod cross_validation;
 pub mod fit_set;
 pub mod identifiability;
@@ -19,7 +14,6 @@ pub mod mpm_synthetic;
 pub mod nelder_mead;
 pub mod objective;
 pub mod params;
-pub mod preheated;
 pub mod report;
 pub mod run;
 pub mod scatter;
@@ -31,4 +25,3 @@ pub mod study_report;
 pub mod synth;
 pub mod tensile;
 pub mod trace;
-pub mod verify;

@@ -1,4 +1,4 @@
-//! No inverse crime (issue 11): synthetic SHPB data from another model than the ones
+//! No inverse crime: synthetic SHPB data from another model than the ones
 //! fitted. The data are the transmitter-face force F2 of the 3D quarter MPM model (CPDI)
 //! at `DATA` points along the specimen, with Coulomb friction μ = 0.1 at the faces,
 //! radial inertia and barrelling, under a measured-style drive (the relative face
@@ -12,7 +12,7 @@
 //!
 //! Data from the axisymmetric model at 80 points along (before the 3D levels): with uGIMP
 //! for both levels B came out +2.4 % (A −0.5 %); with CPDI, whose domains follow F,
-//! A −0.35 % and B +0.99 % (issue 10 note).
+//! A −0.35 % and B +0.99 %.
 
 use super::lm::{levenberg_marquardt, LmOptions};
 use super::model::{ExperimentModel, Material};
@@ -22,7 +22,7 @@ use super::params::{FreeParam, ParamSpace};
 use super::shpb_specimen::ShpbSpecimen;
 use super::single_point::SinglePoint;
 use crate::shpb_model::record::preheated;
-use crate::shpb_model::{verify::bars, Cylinder, Discretization, Drive, FaceSignals};
+use crate::shpb_model::{Bars, Cylinder, Discretization, Drive, FaceSignals};
 use crate::shpb_model::{ModelLevel, ModelSettings, ShpbModel};
 use anyhow::Result;
 use materials::material::Model;
@@ -79,7 +79,13 @@ fn mpm_level(truth: &Material, at: Discretization, kernel: ShapeFunction) -> Res
     let mut settings = ModelSettings::new(at.layers, Drive::MeasuredVelocity);
     settings.shape_function = kernel;
     settings.level = at.level;
-    let model = ShpbModel::new(SPECIMEN, bars(), signals, settings, preheated(truth, theta))?;
+    let model = ShpbModel::new(
+        SPECIMEN,
+        Bars::study(),
+        signals,
+        settings,
+        preheated(truth, theta),
+    )?;
     Ok(MpmShpb::new(model, times, FaceForces::F2, theta))
 }
 

@@ -10,10 +10,10 @@
 //! samples] so that a model with two contact forces (MPM) fits the same objective.
 
 use super::model::Material;
-use super::preheated::thermal_stretch;
 use super::single_point::Observable;
 use anyhow::{bail, Result};
 use materials::driver::{LoadPath, Record};
+use materials::preheated::thermal_stretch;
 use materials::scalar::{c, Scalar};
 
 #[derive(Debug, Clone)]

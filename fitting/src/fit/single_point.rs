@@ -9,11 +9,11 @@
 //! --compare`).
 
 use super::model::{ExperimentModel, Material};
-use super::preheated::{Preheated, STRETCH_PARAMETERS};
 use anyhow::{anyhow, bail, Context, Result};
 use materials::ad::{eps, seed};
 use materials::driver::{run, LoadPath, Record};
 use materials::material::Model;
+use materials::preheated::{Preheated, STRETCH_PARAMETERS};
 use materials::scalar::{c, Scalar};
 use nalgebra::DMatrix;
 use num_dual::Dual64;

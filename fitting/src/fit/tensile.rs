@@ -14,11 +14,11 @@
 //! `MAX_STRAIN_STEP`; noisy strains are made monotone by a running maximum.
 
 use super::model::Material;
-use super::preheated::thermal_stretch;
 use super::single_point::Observable;
 use anyhow::{bail, Result};
 use materials::driver::{LoadPath, Ramp, Record, Temperature};
 use materials::limits::LOAD_PATH_STEPS;
+use materials::preheated::thermal_stretch;
 use materials::scalar::{c, Scalar};
 
 /// Largest engineering-strain increment of one driver step.
@@ -162,7 +162,7 @@ mod tests {
 
     /// A history of 4 points to 1.25 % strain takes 1 + 2 + 3 + 1 steps (at most 0.25 % per
     /// step, one where the strain falls); one corrupt strain of 1e20 asks for 4e22 steps
-    /// and is refused before any of them is allocated, naming the point (issue 16).
+    /// and is refused before any of them is allocated, naming the point.
     #[test]
     fn a_corrupt_strain_is_refused_before_the_path_is_built() {
         let times = [1.0, 2.0, 3.0, 4.0];

@@ -16,18 +16,17 @@ pub mod dispersion;
 mod error;
 pub mod filter;
 mod gauges;
-pub(crate) mod plateau;
-pub(crate) mod pulses;
-pub(crate) mod signal;
+pub mod plateau;
+pub mod pulses;
+pub mod round_trip;
+pub mod signal;
 pub mod synthetic;
-mod verify;
 
 pub use alignment::{Alignment, Shifts};
 pub use analysis::{analyze, analyze_with, Processing, ShpbAnalysis};
 pub use error::ShpbError;
 pub use plateau::Plateau;
 pub use pulses::{detect_pulses, PulseWindows};
-pub use verify::{
-    record_with_late_gauges, synthetic_round_trip, synthetic_round_trip_with, verify_cases,
-    RoundTrip,
+pub use round_trip::{
+    record_with_late_gauges, synthetic_round_trip, synthetic_round_trip_with, RoundTrip,
 };

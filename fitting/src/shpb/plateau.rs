@@ -163,8 +163,8 @@ mod tests {
         assert!(p.is_constant_rate());
     }
 
-    /// A rate that falls linearly from 5300 to 2000 1/s over 22 µs (the copper record of
-    /// issue 12) has no constant-rate plateau: the loading phase runs 5300 → 2650 1/s
+    /// A rate that falls linearly from 5300 to 2000 1/s over 22 µs (a published copper
+    /// record) has no constant-rate plateau: the loading phase runs 5300 → 2650 1/s
     /// around the median 3975, and the ±15 % band holds 1192/2650 = 45 % of it. The
     /// trend of a line is the line itself.
     #[test]

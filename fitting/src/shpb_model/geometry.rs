@@ -1,4 +1,4 @@
-//! The specimen cylinder as material points at each model level (issue 11, "levels,
+//! The specimen cylinder as material points at each model level ("levels,
 //! cheapest first"), the bar axis along the last coordinate:
 //! - `Axisymmetric`: the r-z half section [0, R] × [0, L], a lattice of spacing s = L / n
 //!   (n the layers along the length), the axis r = 0 held radially;

@@ -1,4 +1,4 @@
-//! The MPM model of the SHPB test (thesis chapter 11, issue 11): the specimen as material
+//! The MPM model of the SHPB test (thesis chapter 11): the specimen as material
 //! points between two rigid faces, s_i on the incident side and s_t on the transmitter
 //! side, with penalty contact and Coulomb friction μ (algorithm 13). Levels (`geometry`):
 //! axisymmetric (r, z), 3D quarter and full 3D (x, y, z), z along the bars in each, the
@@ -34,7 +34,7 @@
 //!
 //! Known artefact of linear shape functions: when the specimen drifts with the
 //! transmitter face (incident-pulse drive), its face layer crosses node planes as a whole
-//! and the face force dips for ≈ 0.5 µs (the cell-crossing error; GIMP/CPDI, issue 10).
+//! and the face force dips for ≈ 0.5 µs (the cell-crossing error; GIMP/CPDI).
 //! Units: SI.
 
 pub mod geometry;
@@ -42,7 +42,6 @@ pub mod record;
 mod run;
 pub mod scene;
 pub mod study;
-pub mod verify;
 
 pub use run::{AnyObserver, FaceHistory, ShpbRun};
 
@@ -82,6 +81,24 @@ impl std::str::FromStr for Drive {
 pub struct Bars {
     pub axial_stiffness: f64,
     pub wave_speed: f64,
+}
+
+/// Steel bars of the synthetic studies: the thesis's bars' E = 210 GPa with ρ = 7850
+/// kg/m³, 7 mm in diameter, half the thesis's 14 mm (the 1D bar theory holds the better
+/// the smaller the radius against a pulse's rise length).
+pub const STUDY_BAR_MODULUS: f64 = 210e9;
+pub const STUDY_BAR_DENSITY: f64 = 7850.0;
+pub const STUDY_BAR_DIAMETER: f64 = 7e-3;
+
+impl Bars {
+    /// The bars of the synthetic studies (`STUDY_BAR_*`).
+    pub fn study() -> Bars {
+        let area = std::f64::consts::PI * 0.25 * STUDY_BAR_DIAMETER * STUDY_BAR_DIAMETER;
+        Bars {
+            axial_stiffness: STUDY_BAR_MODULUS * area,
+            wave_speed: (STUDY_BAR_MODULUS / STUDY_BAR_DENSITY).sqrt(),
+        }
+    }
 }
 
 /// Specimen cylinder: diameter and length [m].

@@ -4,9 +4,9 @@
 
 use super::{Bars, Cylinder, FaceSignals, ModelSettings, ShpbModel};
 use crate::experiment::ShpbExperiment;
-use crate::fit::preheated::Preheated;
 use crate::shpb::ShpbAnalysis;
 use materials::plasticity::ElastoPlastic;
+use materials::preheated::Preheated;
 use std::sync::Arc;
 
 /// The measured histories at the faces, from the processed record.

@@ -254,7 +254,7 @@ mod tests {
     }
 
     /// The shipped Taylor bars carry exactly the bar's mass ρ π R² L (the 3D cylinder's
-    /// lattice fill had +3.45 % at 4 cells across the radius, issue 8), and an
+    /// lattice fill had +3.45 % at 4 cells across the radius), and an
     /// axisymmetric body across the axis is rejected.
     #[test]
     fn bodies_carry_exactly_their_mass_and_stay_off_the_negative_radius() {
@@ -356,7 +356,7 @@ mod tests {
     }
 
     /// Sizes derived from a scene are bounded before anything of that size is allocated
-    /// (issue 16): a spacing of 1 nm on the colliding disks (4e17 points) is an error that
+    ///: a spacing of 1 nm on the colliding disks (4e17 points) is an error that
     /// names the body; an end time of 1e30 s stops at step 0 naming `time.end`; a point
     /// thrown 1e12 m away (2e13 cells) stops the run instead of allocating the grid.
     #[test]

@@ -27,10 +27,7 @@ pub use linear::{linear, CellWeights, Linear};
 
 use nalgebra::{Matrix3, SVector};
 
-/// Number of cell corners in `D` dimensions, 2^D.
-pub const fn corners(d: usize) -> usize {
-    1 << d
-}
+pub use crate::grid::corners;
 
 /// Most stencil nodes a point may reach (`support`ᴰ): in 3D a domain half-extent of
 /// 4 cells, in 2D 14.5 cells.

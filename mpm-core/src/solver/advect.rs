@@ -3,9 +3,8 @@
 
 use super::Solver;
 use crate::failure::{Cause, SimulationError};
-use crate::grain;
-use crate::sum::fixed_sum;
-use crate::warm;
+use crate::parallel;
+use crate::parallel::fixed_sum;
 use nalgebra::SVector;
 use rayon::prelude::*;
 
@@ -19,7 +18,7 @@ impl<const D: usize> Solver<D> {
         let bounds = watchdog.map(|w| w.bounds_at(self.time));
         let p = &mut self.particles;
         let s = &self.scratch;
-        let cut = grain::light(p.len());
+        let cut = parallel::light(p.len());
         let points = (p.position.par_iter_mut())
             .zip(s.grid_velocity.par_iter())
             .zip(p.velocity.par_iter())
@@ -47,7 +46,7 @@ impl<const D: usize> Solver<D> {
             }
             None
         };
-        let failure = warm::fold(
+        let failure = parallel::fold(
             points,
             cut,
             None,

@@ -10,8 +10,7 @@ use super::surface_loads::SurfaceLoad;
 use super::Solver;
 use crate::bar::ContactSprings;
 use crate::contact::{candidate_force, Candidate, ContactForce};
-use crate::grain;
-use crate::warm;
+use crate::parallel;
 use nalgebra::SVector;
 use rayon::prelude::*;
 
@@ -60,7 +59,7 @@ impl<const D: usize> Solver<D> {
                 let max_speed = *max_speed.get_or_insert_with(|| {
                     let speeds = p.velocity.par_iter();
                     let fastest = |most: f64, v: &SVector<f64, D>| most.max(v.norm());
-                    warm::fold(speeds, grain::light(p.len()), 0.0, fastest, f64::max)
+                    parallel::fold(speeds, parallel::light(p.len()), 0.0, fastest, f64::max)
                 });
                 let margin = h
                     + 2.0 * interval as f64 * dt * max_speed
@@ -75,7 +74,7 @@ impl<const D: usize> Solver<D> {
                     near.then_some(i)
                 };
                 let points = (0..p.len()).into_par_iter();
-                let candidates = warm::filter_map(points, grain::light(p.len()), near);
+                let candidates = parallel::filter_map(points, parallel::light(p.len()), near);
                 rc.contact.set_candidates(candidates);
             }
             let c = &mut rc.contact;
@@ -89,8 +88,8 @@ impl<const D: usize> Solver<D> {
                 };
                 candidate_force(body, &pose, point, a)
             };
-            let cut = grain::light(p.len());
-            let forces = warm::map(candidates, cut, force);
+            let cut = parallel::light(p.len());
+            let forces = parallel::map(candidates, cut, force);
             c.force = SVector::zeros();
             c.active = 0;
             // the springs a bar-driven face pushes on, along its axis

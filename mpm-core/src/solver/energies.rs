@@ -4,7 +4,7 @@
 
 use super::Solver;
 use crate::failure::{Cause, SimulationError};
-use crate::sum::fixed_sum;
+use crate::parallel::fixed_sum;
 use nalgebra::SVector;
 
 /// Energy bookkeeping [J]: K + W_int = K0 + W_ext + W_bc for an exact integrator.

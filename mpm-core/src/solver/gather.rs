@@ -3,18 +3,17 @@
 //! L = Σ v_I ⊗ ∇N_I that updates F, V, σ and the material history (the out-of-plane
 //! terms from `Kinematics::deformation`).
 //!
-//! A block's points go a piece (`grain::MATERIAL_PIECE`) at a time: the interpolation and
+//! A block's points go a piece (`parallel::MATERIAL_PIECE`) at a time: the interpolation and
 //! new F of every point of the piece, then one `Material::update_batch` for all of them
 //! (the plastic returns four at a time in lockstep), then V, bulk viscosity and work.
 
 use super::Solver;
 use crate::failure::{Cause, SimulationError};
-use crate::grain;
 use crate::grid::Grid;
 use crate::kinematics::Kinematics;
-use crate::sum::fixed_sum;
+use crate::parallel;
+use crate::parallel::fixed_sum;
 use crate::viscosity::BulkViscosity;
-use crate::warm;
 use crate::weights::{Stencil, WeightCache};
 use materials::{Material, State};
 use nalgebra::{Matrix3, SMatrix, SVector};
@@ -53,7 +52,7 @@ struct Deformation<'a> {
     cell: f64,
 }
 
-/// The points of one piece of a block (`grain::MATERIAL_PIECE` or fewer), from point
+/// The points of one piece of a block (`parallel::MATERIAL_PIECE` or fewer), from point
 /// `first` of the model on.
 struct Piece<'a, const D: usize> {
     first: usize,
@@ -150,7 +149,7 @@ impl Deformation<'_> {
         (f_new, kinematic): (&[Matrix3<f64>], &[Option<Kinematic>]),
         failure: &mut Failure,
     ) {
-        let mut updated = [None; grain::MATERIAL_PIECE];
+        let mut updated = [None; parallel::MATERIAL_PIECE];
         let mut deliver = |j: usize, result: Result<(Matrix3<f64>, State<f64>), _>| match result {
             Ok(new) => updated[j] = Some(new),
             Err(e) => earliest(failure, p.first + j, Cause::Material(e)),
@@ -200,16 +199,16 @@ impl<const D: usize> Solver<D> {
         let p = &mut self.particles;
         let s = &mut self.scratch;
         let weights = &s.weights;
-        let piece = grain::MATERIAL_PIECE;
+        let piece = parallel::MATERIAL_PIECE;
         let mut first_failure: Option<(usize, Cause)> = None;
         for block in &mut self.blocks {
             let r = block.range.clone();
             // the material update is always split, a piece at a time; a velocity update
             // alone is light
             let cut = if deformation {
-                grain::MATERIAL
+                parallel::MATERIAL
             } else {
-                grain::light(p.len()).per_item()
+                parallel::light(p.len()).per_item()
             };
             let update = Deformation {
                 material: &*block.material,
@@ -221,8 +220,7 @@ impl<const D: usize> Solver<D> {
                 cell: grid.min_spacing(),
             };
             // a failure travels boxed: the per-piece Option stays one word wide instead of
-            // a whole `Cause` copied through the reduction (≈ 7 % of a small model's step,
-            // issue 15)
+            // a whole `Cause` copied through the reduction
             let pieces = (
                 p.position[r.clone()].par_chunks(piece),
                 p.reference_position[r.clone()].par_chunks(piece),
@@ -259,8 +257,8 @@ impl<const D: usize> Solver<D> {
                     }
                     return failure;
                 }
-                let mut f_new = [Matrix3::zeros(); grain::MATERIAL_PIECE];
-                let mut kinematic = [None; grain::MATERIAL_PIECE];
+                let mut f_new = [Matrix3::zeros(); parallel::MATERIAL_PIECE];
+                let mut kinematic = [None; parallel::MATERIAL_PIECE];
                 for j in 0..n {
                     if let Some((vg, l)) = points.advance(j, from, motion, &mut failure) {
                         let x = (&points.x[j], &points.x_ref[j]);
@@ -274,7 +272,7 @@ impl<const D: usize> Solver<D> {
                 update.update(&mut points, batch, &mut failure);
                 failure
             };
-            let failure = warm::fold(
+            let failure = parallel::fold(
                 pieces,
                 cut,
                 None,

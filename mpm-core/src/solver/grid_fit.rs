@@ -5,11 +5,10 @@
 
 use super::Solver;
 use crate::failure::{Cause, SimulationError};
-use crate::grain;
+use crate::parallel;
 use crate::shape::{
     CpGimp, CpGimpAnalytic, Cpdi, CpdiHex, Kernel, Linear, Point, Reach, ShapeFunction, UGimp,
 };
-use crate::warm;
 use crate::weights::Domains;
 use materials::limits::GRID_NODES;
 use nalgebra::SVector;
@@ -75,7 +74,7 @@ impl<const D: usize> Solver<D> {
         );
         let with = |(lo, hi): Bounds<D>, p: &SVector<f64, D>| (lo.inf(p), hi.sup(p));
         let both = |a: Bounds<D>, b: Bounds<D>| (a.0.inf(&b.0), a.1.sup(&b.1));
-        let (lo, hi) = warm::fold(x.par_iter(), grain::light(x.len()), none, with, both);
+        let (lo, hi) = parallel::fold(x.par_iter(), parallel::light(x.len()), none, with, both);
         let (cmin, cmax) = (self.grid.cell_of(&lo), self.grid.cell_of(&hi));
         let (pad, support) = (reach.pad, reach.support + reach.pad);
         let nodes: f64 = (0..D)
@@ -120,9 +119,10 @@ impl<const D: usize> Solver<D> {
                 a
             }
         };
-        let cut = grain::light(p.len());
+        let cut = parallel::light(p.len());
         let widest = |a, i| wider(a, extent(i));
-        let (extent, widest) = warm::fold(range.into_par_iter(), cut, (0.0, first), widest, wider);
+        let (extent, widest) =
+            parallel::fold(range.into_par_iter(), cut, (0.0, first), widest, wider);
         (Reach::of(extent), extent, widest)
     }
 }

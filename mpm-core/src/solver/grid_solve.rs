@@ -5,9 +5,8 @@
 
 use super::Solver;
 use crate::boundary::VelocityBc;
-use crate::grain;
 use crate::grid::Node;
-use crate::warm;
+use crate::parallel;
 use nalgebra::SVector;
 use rayon::prelude::*;
 
@@ -101,9 +100,9 @@ impl<const D: usize> Solver<D> {
                 .collect(),
         };
         let meta = self.grid.clone_meta();
-        let cut = grain::light(self.particles.len()).per_item();
+        let cut = parallel::light(self.particles.len()).per_item();
         let chunks = self.grid.nodes.par_chunks_mut(CHUNK).enumerate();
-        let work = warm::map(chunks, cut, |(chunk, nodes): (usize, &mut [Node<D>])| {
+        let work = parallel::map(chunks, cut, |(chunk, nodes): (usize, &mut [Node<D>])| {
             let mut w = (0.0, 0.0, 0.0);
             for (j, n) in nodes.iter_mut().enumerate() {
                 if n.mass <= 0.0 {

@@ -15,6 +15,7 @@ mod gather;
 mod grid_fit;
 mod grid_solve;
 mod initialize;
+pub mod observer;
 mod scatter;
 mod scheme;
 mod settings;
@@ -32,7 +33,6 @@ use crate::failure::{Cause, SimulationError};
 use crate::grid::Grid;
 use crate::material_block::MaterialBlock;
 use crate::mesh::MeshPoint;
-use crate::observer::Observer;
 use crate::particles::Particles;
 use crate::rigid::RigidBody;
 use crate::shape::{Hex, ShapeFunction};
@@ -42,6 +42,7 @@ use crate::weights::WeightCache;
 use materials::signal::TimeSignal;
 use materials::Material;
 use nalgebra::SVector;
+use observer::Observer;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -295,7 +296,7 @@ impl<const D: usize> Solver<D> {
         t_end: f64,
         observers: &mut [&mut dyn Observer<D>],
     ) -> Result<(), RunError> {
-        crate::warm::with_warm_pool(|| {
+        crate::parallel::with_warm_pool(|| {
             while self.time < t_end - 0.5 * self.dt {
                 self.step()?;
                 for o in observers.iter_mut() {
@@ -461,7 +462,7 @@ mod tests {
     }
 
     /// 200 steps on 1, 2 and 4 threads, bit for bit, with the pool cold and warm
-    /// (`warm`): a model below `grain::LIGHT_PARALLEL_FROM` points (in a cold pool only
+    /// (`warm`): a model below `parallel::LARGE_MODEL_FROM` points (in a cold pool only
     /// its material update is split) and one above it (every loop split).
     #[test]
     fn results_do_not_depend_on_the_thread_count() {
@@ -474,14 +475,14 @@ mod tests {
                 pool.install(|| {
                     let mut s = cube(spacing);
                     assert_eq!(
-                        s.particles.len() >= crate::grain::LIGHT_PARALLEL_FROM,
+                        s.particles.len() >= crate::parallel::LARGE_MODEL_FROM,
                         split,
                         "{} points",
                         s.particles.len()
                     );
                     let steps = |s: &mut Solver<3>| (0..200).for_each(|_| s.step().unwrap());
                     if warm {
-                        crate::warm::with_warm_pool(|| steps(&mut s));
+                        crate::parallel::with_warm_pool(|| steps(&mut s));
                     } else {
                         steps(&mut s);
                     }

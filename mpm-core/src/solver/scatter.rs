@@ -5,11 +5,10 @@
 //! particles in index order, so the sums do not depend on the number of threads.
 
 use super::Solver;
-use crate::grain;
 use crate::grid::Node;
 use crate::kinematics::Kinematics;
+use crate::parallel;
 use crate::particles::Particles;
-use crate::warm;
 use crate::weights::WeightCache;
 use nalgebra::{SMatrix, SVector};
 use rayon::prelude::*;
@@ -83,8 +82,8 @@ impl<const D: usize> Solver<D> {
                 body_force: self.settings.body_force,
                 kinematics: self.settings.kinematics,
             };
-            let cut = grain::light(self.particles.len()).per_item();
-            warm::for_each(parts.into_par_iter(), cut, |(k, start, nodes)| {
+            let cut = parallel::light(self.particles.len()).per_item();
+            parallel::for_each(parts.into_par_iter(), cut, |(k, start, nodes)| {
                 for &i in &s.order[s.slab_start[k]..s.slab_start[k + 1]] {
                     sources.add(i as usize, t, start, nodes);
                 }
@@ -96,8 +95,8 @@ impl<const D: usize> Solver<D> {
     }
 
     fn clear_nodes(&mut self, t: Transfer) {
-        let cut = grain::light(self.particles.len());
-        warm::for_each(self.grid.nodes.par_iter_mut(), cut, |n: &mut Node<D>| {
+        let cut = parallel::light(self.particles.len());
+        parallel::for_each(self.grid.nodes.par_iter_mut(), cut, |n: &mut Node<D>| {
             if t.mass {
                 n.mass = 0.0;
                 n.heaviest = 0.0;

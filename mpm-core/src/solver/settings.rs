@@ -40,7 +40,7 @@ pub struct Settings<const D: usize> {
     /// of the node's own points, not of the lightest point of the model: axisymmetric
     /// points weigh 2π r A ρ, so near the rim they are heavier than on the axis by R/r,
     /// and a cutoff from the lightest point let rim nodes with 1/100 of their points'
-    /// mass be accelerated (USL failed there under refinement, issue 8).
+    /// mass be accelerated (USL failed there under refinement).
     pub mass_cutoff: f64,
     /// A run fails when the energy error exceeds this fraction of the energy supplied
     /// (module `watchdog`).
@@ -80,7 +80,7 @@ impl<const D: usize> Settings<D> {
     /// The thesis's algorithm as its benchmarks run it: USL (algorithm 6) and no bulk
     /// viscosity. The defaults (MUSL with bulk viscosity) are for impact: USL fails when a
     /// free surface of a fast body crosses a node plane, and without viscosity the ringing
-    /// after an impact drives an axisymmetric axis past yield (issue 8 note).
+    /// after an impact drives an axisymmetric axis past yield.
     pub fn thesis_scheme(&mut self) {
         self.scheme = Scheme::Usl;
         self.bulk_viscosity = None;

@@ -9,7 +9,7 @@
 //! the node inside the body then needs a stress gradient to balance its share. With the
 //! ends of a compressed cylinder on node planes, the end cells carried only ≈ 3/4 of the
 //! interior stress and the specimen came out stiffer than its material, an error of first
-//! order in the spacing (issue 11). At the surface point a face on a node plane loads
+//! order in the spacing. At the surface point a face on a node plane loads
 //! only that plane and the stress stays uniform.
 //!
 //! The work of the loads is f · Σ_I w_I v_I Δt with the same weights w_I.

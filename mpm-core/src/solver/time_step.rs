@@ -8,8 +8,7 @@
 //! Every change is kept in `Solver::time_step_changes` for the run log.
 
 use super::Solver;
-use crate::grain;
-use crate::warm;
+use crate::parallel;
 use nalgebra::SVector;
 use rayon::prelude::*;
 
@@ -57,7 +56,7 @@ impl<const D: usize> Solver<D> {
                 let c = b.wave_speed();
                 let fastest = |most: f64, v: &SVector<f64, D>| most.max(c + v.norm());
                 let points = v[b.range.clone()].par_iter();
-                warm::fold(points, grain::light(v.len()), 0.0, fastest, f64::max)
+                parallel::fold(points, parallel::light(v.len()), 0.0, fastest, f64::max)
             })
             .fold(0.0, f64::max)
     }

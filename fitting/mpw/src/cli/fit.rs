@@ -1,0 +1,209 @@
+//! `mpw fit [SET]`: fit an experiment set (default `data/experiments/default.toml`), print
+//! the report, write `report.toml`, per-experiment CSVs and charts to `--out`.
+//! `--compare` also runs Nelder-Mead, LM with the exact Jacobian and LM with finite
+//! differences on the same set and charts objective against evaluations and wall time.
+
+use crate::charts::fit as fit_charts;
+use crate::cli::progress::ProgressLine;
+use anyhow::Result;
+use fitting::fit::bootstrap::bootstrap;
+use fitting::fit::cross_validation::leave_one_group_out;
+use fitting::fit::fit_set::FitSet;
+use fitting::fit::objective::Block;
+use fitting::fit::report::{read_parameters, table, write_files};
+use fitting::fit::run::{run_fit, FitResult, Optimizer};
+use fitting::fit::scatter::scatter;
+use fitting::fit::study_report::{
+    bootstrap_table, cross_validation_table, write_bootstrap, write_cross_validation,
+};
+use fitting::fit::trace::HistoryPoint;
+use materials::material::Model;
+use std::path::{Path, PathBuf};
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Experiment-set file.
+    #[arg(default_value = "data/experiments/default.toml")]
+    pub set: PathBuf,
+    /// Override the set's optimizer: lm, lm-fd or nelder-mead.
+    #[arg(long)]
+    pub optimizer: Option<String>,
+    /// Override the set's number of starts.
+    #[arg(long)]
+    pub starts: Option<usize>,
+    /// Start from the parameters of this fit report or material file (e.g. the
+    /// single-point fit before an MPM-level fit), clamped into the set's bounds.
+    #[arg(long, value_name = "REPORT")]
+    pub start: Option<PathBuf>,
+    /// Output folder for report and charts.
+    #[arg(long, default_value = "out/fit")]
+    pub out: PathBuf,
+    /// Also compare Nelder-Mead, LM (exact) and LM (finite differences).
+    #[arg(long)]
+    pub compare: bool,
+    /// Validation run: fail unless every stage converged and every group's RMS error
+    /// against its mean measured curve (a single record: its own samples) is at most 5 %
+    /// of the mean measured magnitude.
+    #[arg(long)]
+    pub validate: bool,
+    /// Bootstrap over records: this many resamples (records drawn with replacement within
+    /// each group), each refitted from the optimum; intervals, correlation, bands.
+    #[arg(long, value_name = "SAMPLES")]
+    pub bootstrap: Option<usize>,
+    /// Leave one group out: fit on the other groups, predict the one left out.
+    #[arg(long)]
+    pub cross_validate: bool,
+    /// Exit 0 even when a group's RMS against its mean curve exceeds 50 % (a poor fit,
+    /// usually a unit mistake).
+    #[arg(long)]
+    pub allow_poor_fit: bool,
+}
+
+/// RMS against a group's mean curve above which a fit is poor: no parameter set of the
+/// model describes the data, which usually means a unit or column mistake.
+pub const POOR_FIT_RMS: f64 = 0.5;
+
+/// Fail if a group of `result` is fitted worse than `POOR_FIT_RMS`, naming the likely causes.
+fn refuse_poor_fit(file: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
+    let blocks: Vec<&Block> = set.blocks.iter().collect();
+    let poor: Vec<String> = scatter(&blocks, &result.predictions)
+        .iter()
+        .filter(|g| !(g.rms_vs_mean <= POOR_FIT_RMS))
+        .map(|g| format!("{} ({:.0} %)", g.group.label, 100.0 * g.rms_vs_mean))
+        .collect();
+    if poor.is_empty() {
+        return Ok(());
+    }
+    anyhow::bail!(
+        "{}: poor fit: RMS against the mean measured curve above {:.0} % for {}. Check the column units first (a strain in % declared as \"1\" or the reverse, a stress in Pa declared as MPa), then the window and the model level. The report is written; --allow-poor-fit exits 0",
+        file.display(),
+        100.0 * POOR_FIT_RMS,
+        poor.join(", ")
+    )
+}
+
+/// Largest RMS error of a validated fit against a group's mean curve, as a fraction of
+/// the mean measured magnitude.
+pub const VALIDATION_RMS: f64 = 0.05;
+
+/// Fail unless every group's RMS against its mean curve is at most `VALIDATION_RMS` and
+/// every stage (none for a prediction) converged.
+pub fn validate(file: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
+    let mut failures = Vec::new();
+    for (i, s) in result.stages.iter().enumerate() {
+        if !s.runs[s.best].converged {
+            failures.push(format!(
+                "stage {} did not converge: {}",
+                i + 1,
+                s.runs[s.best].termination
+            ));
+        }
+    }
+    let blocks: Vec<&Block> = set.blocks.iter().collect();
+    for g in scatter(&blocks, &result.predictions) {
+        if !(g.rms_vs_mean <= VALIDATION_RMS) {
+            failures.push(format!(
+                "{}: RMS {:.2} % of the mean measured value (against the mean of its {} record(s)) exceeds {:.0} %",
+                g.group.label,
+                100.0 * g.rms_vs_mean,
+                g.group.members.len(),
+                100.0 * VALIDATION_RMS
+            ));
+        }
+    }
+    if !failures.is_empty() {
+        anyhow::bail!(
+            "validation of {} failed:\n  {}",
+            file.display(),
+            failures.join("\n  ")
+        );
+    }
+    println!("validation passed");
+    Ok(())
+}
+
+/// Fit a set with progress per stage and start on standard error.
+fn fit_with_progress(set: &FitSet, optimizer: Optimizer) -> Result<FitResult> {
+    let line = ProgressLine::default();
+    let progress = |stage: usize, start: usize, p: &HistoryPoint| {
+        let text = format!(
+            "  stage {} start {}: {:>5} evaluations, {:>4} Jacobians, {:>7.2} s, S = {:.6e}",
+            stage + 1,
+            start + 1,
+            p.evaluations,
+            p.jacobians,
+            p.wall_s,
+            p.cost
+        );
+        line.show(&format!("{stage}/{start}"), &text);
+    };
+    let result = run_fit(set, optimizer, &progress);
+    line.finish();
+    result
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let mut set = FitSet::load(&args.set)?;
+    if let Some(s) = args.starts {
+        set.starts = s.max(1);
+    }
+    if let Some(file) = &args.start {
+        let start = read_parameters(&set.base, file)?;
+        for p in &mut set.params {
+            *p = p.starting_at(start.param(&p.name).expect("a free parameter of the base"));
+        }
+    }
+    let optimizer = Optimizer::parse(args.optimizer.as_deref().unwrap_or(&set.optimizer))?;
+    eprintln!(
+        "fitting {} ({} experiments)",
+        args.set.display(),
+        set.blocks.len()
+    );
+    let result = fit_with_progress(&set, optimizer)?;
+    print!("{}", table(&set, &result));
+    write_files(&args.out, &set, &result)?;
+    fit_charts::fit_charts(&args.out, &set, &result)?;
+    if !args.allow_poor_fit {
+        refuse_poor_fit(&args.set, &set, &result)?;
+    }
+    if let Some(samples) = args.bootstrap {
+        let line = ProgressLine::default();
+        let report = |b: usize| {
+            let text = format!("  bootstrap sample {}/{samples}", b + 1);
+            line.show(&(10 * b / samples).to_string(), &text);
+        };
+        let b = bootstrap(&set, &result.material, samples, &report);
+        line.finish();
+        let b = b?;
+        print!("{}", bootstrap_table(&b));
+        write_bootstrap(&args.out, &set, &b)?;
+        fit_charts::scatter_charts(&args.out, &set, &result.predictions, Some(&b))?;
+    }
+    if args.cross_validate {
+        let report = |k: usize, g: &str| eprintln!("  fold {}: without {g}", k + 1);
+        let folds = leave_one_group_out(&set, &result.material, &report)?;
+        print!("{}", cross_validation_table(&set, &folds));
+        write_cross_validation(&args.out, &set, &folds)?;
+    }
+    if args.compare {
+        let mut runs = Vec::new();
+        for opt in [
+            Optimizer::NelderMead,
+            Optimizer::LmExact,
+            Optimizer::LmFiniteDifference,
+        ] {
+            eprintln!("comparison: {opt:?}");
+            let mut single = FitSet::load(&args.set)?;
+            single.starts = 1;
+            let r = fit_with_progress(&single, opt)?;
+            runs.push(r);
+        }
+        let summary = fit_charts::comparison(&args.out, &runs)?;
+        print!("{summary}");
+    }
+    println!("report, CSVs and charts in {}", args.out.display());
+    if args.validate {
+        validate(&args.set, &set, &result)?;
+    }
+    Ok(())
+}

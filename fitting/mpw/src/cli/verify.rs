@@ -1,0 +1,250 @@
+//! `mpw verify`: every verification case of the project, one table row each (case,
+//! measured, reference, tolerance, pass/fail); exits non-zero if any case fails.
+//! `--charts DIR` also draws the figure 4.5 reproduction, the iso-error maps, the
+//! energy histories of USL, USF and MUSL on Bardenhagen's bar (energies and total drift)
+//! and the truss displacement per kernel.
+
+use crate::charts::heatmap::HeatMap;
+use crate::charts::{LineChart, Series};
+use crate::verify::data::VerifyData;
+use crate::verify::materials::{self as studies, figure_4_5, iso_error};
+use anyhow::{bail, Result};
+use std::path::{Path, PathBuf};
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Full-size cases (finer iso-error map, full-size MPM benchmarks).
+    #[arg(long)]
+    pub full: bool,
+    /// Write the verification charts (PNG) into this folder.
+    #[arg(long)]
+    pub charts: Option<PathBuf>,
+    /// Reference data folder: materials/ (parameter sets of every material and MPM case)
+    /// and experiments/ (the default set, the 304L and 945 experiment files, whose real
+    /// records lie in DIR/../../shared/data), so a copied binary runs the table from
+    /// anywhere.
+    #[arg(long, default_value = "data")]
+    pub data: PathBuf,
+    /// Fail when the rows on the shared real data (DIR/../../shared/data) did not run.
+    #[arg(long)]
+    pub require_data: bool,
+    /// Also write every row (case, measured and reference to full precision, result) to
+    /// this CSV file, to compare two builds value by value.
+    #[arg(long)]
+    pub values: Option<PathBuf>,
+}
+
+/// Every row with its numbers in shortest round-trip form.
+fn write_values(path: &Path, cases: &[crate::verify::case_result::CaseResult]) -> Result<()> {
+    let mut text = String::from("case,measured,reference,result\n");
+    for c in cases {
+        let result = if c.info {
+            "info"
+        } else if c.passed {
+            "pass"
+        } else {
+            "fail"
+        };
+        text += &format!(
+            "\"{}\",{:e},{:e},{result}\n",
+            c.name.replace('"', "\"\""),
+            c.measured,
+            c.reference
+        );
+    }
+    std::fs::write(path, text).map_err(|e| anyhow::anyhow!("{}: cannot write: {e}", path.display()))
+}
+
+/// Thesis figure 4.5: σ_xx against engineering strain for the four rate/temperature pairs.
+fn figure_4_5_chart(materials: &Path, out: &Path) -> Result<()> {
+    let m = materials::load_elasto_plastic(materials.join("aisi_4340.toml"))?;
+    let mut chart = LineChart::new(
+        "Johnson-Cook AISI 4340, uniaxial tension then hold (thesis fig. 4.5)",
+        "engineering strain ε_xx [-]",
+        "Cauchy stress σ_xx [MPa]",
+    );
+    for c in figure_4_5::run(&m)? {
+        // The hold shows as the vertical drop at ε_xx = 0.6.
+        let x: Vec<f64> = c.records.iter().map(|r| r.f[(0, 0)] - 1.0).collect();
+        let y: Vec<f64> = c.records.iter().map(|r| r.sigma[(0, 0)]).collect();
+        chart = chart.with(Series::scaled(
+            format!("ε̇ = {} 1/s, θ = {} K", c.rate, c.theta),
+            &x,
+            &y,
+            1.0,
+            1e-6,
+        ));
+    }
+    chart.write_png(&out.join("figure_4_5.png"))
+}
+
+fn iso_error_charts(materials: &Path, out: &Path) -> Result<()> {
+    let multiples: Vec<f64> = (0..=20).map(|k| 5.0 * k as f64).collect();
+    let j2 = studies::j2_voce(materials)?;
+    let jc = materials::load_elasto_plastic(materials.join("42crmo4_qt660.toml"))?;
+    for (name, m) in [("j2", j2), ("johnson_cook", jc)] {
+        let map = iso_error::run(&m, &multiples);
+        HeatMap {
+            title: format!(
+                "{name}: one-step stress error vs {} sub-steps",
+                iso_error::SUBSTEPS
+            ),
+            x_label: "increment along the loading direction n1 [yield strains]".into(),
+            y_label: "increment along the tangential direction n2 [yield strains]".into(),
+            x: map.a.clone(),
+            y: map.b.clone(),
+            value: map.error.clone(),
+            log10_range: (-4.0, 0.0),
+            value_label: "relative stress error [-]".into(),
+            missing_label: "the one-step update failed".into(),
+        }
+        .write_png(&out.join(format!("iso_error_{name}.png")))?;
+    }
+    Ok(())
+}
+
+/// Bardenhagen's bar (2002): kinetic, strain (stress work) and total energy of USL, USF
+/// and MUSL side by side, the energy behaviour the thesis compares in chapter 2.
+fn bar_energy_chart(out: &Path) -> Result<()> {
+    use crate::verify::mpm::vibration;
+    use mpm_core::Scheme;
+    let mut chart = LineChart::new(
+        "Continuum bar (Bardenhagen 2002), 25 cells: energy per update scheme",
+        "t [s]",
+        "energy per metre of thickness [J/m]",
+    );
+    // the curves of the three schemes nearly coincide; the relative drift of the total
+    // (K + W_int)/E0 − 1 shows where they differ
+    let mut drift = LineChart::new(
+        "Continuum bar (Bardenhagen 2002), 25 cells: total energy drift per update scheme",
+        "t [s]",
+        "(K + W_int) / E0 - 1 [-]",
+    );
+    for (name, scheme) in [
+        ("USL", Scheme::Usl),
+        ("USF", Scheme::Usf),
+        ("MUSL", Scheme::Musl),
+    ] {
+        let e = vibration::bar(scheme, 25).energy;
+        let e0 = e[0].1 + e[0].2;
+        drift = drift.with(Series {
+            label: name.into(),
+            points: e.iter().map(|&(t, k, w)| (t, (k + w) / e0 - 1.0)).collect(),
+        });
+        let series = |what: &str, f: &dyn Fn(f64, f64) -> f64| Series {
+            label: format!("{name} {what}"),
+            points: e.iter().map(|&(t, k, w)| (t, f(k, w))).collect(),
+        };
+        chart = chart
+            .with(series("total K + W_int", &|k, w| k + w))
+            .with(series("kinetic K", &|k, _| k))
+            .with(series("strain W_int", &|_, w| w));
+    }
+    chart.write_png(&out.join("bar_energy_schemes.png"))?;
+    drift.write_png(&out.join("bar_energy_drift.png"))
+}
+
+/// Truss benchmark (thesis §10.2, plane strain, 0.5 m cells): displacement of the top
+/// centre A against time per kernel; a separated run leaves the chart (its upper part
+/// falls away without bound).
+fn truss_chart(scenes: &Path, out: &Path) -> Result<()> {
+    use crate::verify::mpm::truss::truss;
+    use mpm_core::shape::ShapeFunction::{CpGimp, CpGimpAnalytic, Cpdi, Linear, UGimp};
+    const SHOWN: f64 = 4.0; // m
+    let mut chart = LineChart::new(
+        "Truss, plane strain, 0.5 m cells: top-centre displacement per kernel (thesis fig. 10.9)",
+        "t [s]",
+        "displacement of A along the pull [m]",
+    );
+    let plane = scenes.join("truss.toml");
+    for (kernel, n) in [
+        (Linear, 6),
+        (UGimp, 6),
+        (CpGimpAnalytic, 6),
+        (CpGimp, 6),
+        (Cpdi, 6),
+        (Linear, 10),
+        (Cpdi, 40),
+    ] {
+        let run = truss(&plane, kernel, 0.5, n);
+        let separated = run.a_peak() > SHOWN;
+        chart = chart.with(Series {
+            label: format!(
+                "{} n = {n}{}",
+                kernel.name(),
+                if separated {
+                    " (separates: leaves the chart)"
+                } else {
+                    ""
+                }
+            ),
+            points: run
+                .history
+                .iter()
+                .map(|h| (h.t, if h.a > SHOWN { f64::NAN } else { h.a }))
+                .collect(),
+        });
+    }
+    chart.write_png(&out.join("truss_displacement.png"))
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let data = VerifyData::new(&args.data);
+    let materials = data.materials();
+    let mut cases = studies::verify_cases(&materials, args.full)?;
+    cases.extend(crate::verify::shpb::verify_cases(&data));
+    cases.extend(crate::verify::fit::verify_cases(&data));
+    cases.extend(crate::verify::mpm::verify_cases(&data, args.full));
+    cases.extend(crate::verify::shpb_model::verify_cases());
+    println!(
+        "{:<60} {:>14} {:>14} {:>12} result",
+        "case", "measured", "reference", "tolerance"
+    );
+    for c in &cases {
+        println!("{c}");
+    }
+    if let Some(path) = &args.values {
+        write_values(path, &cases)?;
+    }
+    if let Some(dir) = &args.charts {
+        std::fs::create_dir_all(dir)?;
+        figure_4_5_chart(&materials, dir)?;
+        iso_error_charts(&materials, dir)?;
+        bar_energy_chart(dir)?;
+        truss_chart(&data.scenes(), dir)?;
+        println!("charts written to {}", dir.display());
+    }
+    let failed = cases.iter().filter(|c| !c.passed).count();
+    let info = cases.iter().filter(|c| c.info).count();
+    println!(
+        "{} cases, {} passed, {} failed, {} reported (info)",
+        cases.len(),
+        cases.len() - failed - info,
+        failed,
+        info
+    );
+    let missing_945 = data.steel_945().is_none();
+    let missing_304l = data.ss304l_set().is_none();
+    if missing_945 || missing_304l {
+        println!(
+            "note: the real-data rows did not run ({}): the shared data folder {} is not there",
+            [
+                (missing_945, "945 SHPB pairs"),
+                (missing_304l, "304L leave-one-rate-out")
+            ]
+            .iter()
+            .filter(|(missing, _)| *missing)
+            .map(|(_, rows)| *rows)
+            .collect::<Vec<_>>()
+            .join(", "),
+            data.shared_root().display()
+        );
+        if args.require_data {
+            bail!("--require-data: the real-data rows did not run");
+        }
+    }
+    if failed > 0 {
+        bail!("{failed} verification case(s) failed");
+    }
+    Ok(())
+}

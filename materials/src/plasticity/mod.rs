@@ -1,0 +1,311 @@
+//! Finite-strain J2 thermo-visco-plasticity on a Neo-Hooke elastic law (thesis 4.3,
+//! algorithms 3 and 4).
+//!
+//! - Multiplicative split F = Fe Fp; history `fp_inv` = Fp⁻¹, `alpha`, `theta`.
+//! - Trial Fe = F Fp_n⁻¹; von Mises yield φ = τ_VM − τ_y(α, α̇, θ_n), α̇ = Δα/Δt.
+//! - Plastic flow by the implicit exponential map, eq. 4.48:
+//!   Fe = exp(−Δα √(3/2) N) F Fp_n⁻¹, N = dev τ / ‖dev τ‖.
+//! - Adiabatic heating after the return, eq. 4.50 with Kirchhoff flow stress:
+//!   θ = θ_n + γ_TQ/(ρ0 c_θ) Δα τ_y, with τ_y = τ_VM of the returned stress.
+//!
+//! With a `Voce` flow stress this is the rate-independent J2 model (eq. 4.51); with a
+//! `JohnsonCook` flow stress the Johnson-Cook model (eq. 4.52).
+//!
+//! The local problem is solved in `f64` (reference 10-unknown Newton or the fast
+//! principal-stretch return). For dual scalars one more Newton step is taken in dual
+//! arithmetic with the converged real Jacobian: x = x* − K⁻¹ r(x*), which is the implicit
+//! function theorem dx/dp = −K⁻¹ ∂r/∂p, so derivatives never pass through the iterations.
+
+pub mod return_principal;
+pub mod return_reference;
+
+use crate::elastic::Elastic;
+use crate::error::MaterialError;
+use crate::flow_stress::{FlowStress, Onset};
+use crate::lanes::MAX_LANES;
+use crate::material::{one_by_one, Deliver, Model, State};
+use crate::parameter_set;
+use crate::scalar::{c, Scalar};
+use crate::tensor::{det, lift, re, von_mises, M3};
+use return_principal::Yielding;
+
+parameter_set! {
+    /// Thermal constants (eq. 4.22-4.23, 4.50).
+    Thermal {
+        /// reference (stress-free) temperature θ0 [K]
+        theta0 => "theta0",
+        /// specific heat capacity c_θ [J/(kg K)]
+        c_theta => "c_theta",
+        /// thermal expansion coefficient α_σ [1/K]
+        alpha_sigma => "alpha_sigma",
+        /// Taylor-Quinney coefficient γ_TQ [-]
+        gamma_tq => "gamma_tq",
+    }
+}
+
+/// Which algorithm solves the local return mapping.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ReturnMap {
+    /// Thesis algorithm 3: Newton on the 9 entries of Fp⁻¹ and α (10 unknowns).
+    Reference,
+    /// Equivalent return in the principal logarithmic stretches of the trial be
+    /// (4 unknowns), valid because the model is isotropic.
+    Principal,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ElastoPlastic<D = f64> {
+    pub elastic: Elastic<D>,
+    pub flow: FlowStress<D>,
+    pub thermal: Thermal<D>,
+    pub return_map: ReturnMap,
+}
+
+impl<D: Scalar> ElastoPlastic<D> {
+    /// Kirchhoff stress of the elastic part at temperature `theta`.
+    pub fn tau(&self, fe: &M3<D>, theta: D) -> M3<D> {
+        self.elastic
+            .tau(fe, theta - self.thermal.theta0, self.thermal.alpha_sigma)
+    }
+
+    /// Flow stress after a plastic increment `dalpha` over `dt` at temperature `theta`.
+    pub fn tau_y(&self, alpha: D, dalpha: D, dt: f64, theta: D) -> D {
+        self.flow
+            .tau_y(alpha, dalpha / c::<D>(dt), theta, self.thermal.theta0)
+    }
+
+    /// The same model with real parameters.
+    pub fn re(&self) -> ElastoPlastic<f64> {
+        self.map_params(|_, v| v.re())
+    }
+
+    /// The same model with constant parameters of scalar type `E`.
+    pub fn lift<E: Scalar>(&self) -> ElastoPlastic<E> {
+        self.map_params(|_, v| c::<E>(v.re()))
+    }
+}
+
+impl<D: Scalar> Model<D> for ElastoPlastic<D> {
+    type With<E: Scalar> = ElastoPlastic<E>;
+
+    fn map_params<E: Scalar>(&self, mut f: impl FnMut(&'static str, D) -> E) -> ElastoPlastic<E> {
+        ElastoPlastic {
+            elastic: self.elastic.map(&mut f),
+            flow: self.flow.map(&mut f),
+            thermal: self.thermal.map(&mut f),
+            return_map: self.return_map,
+        }
+    }
+
+    fn param_names(&self) -> Vec<&'static str> {
+        let mut names = Elastic::<D>::NAMES.to_vec();
+        names.extend_from_slice(self.flow.names());
+        names.extend_from_slice(Thermal::<D>::NAMES);
+        names
+    }
+
+    fn param(&self, name: &str) -> Option<D> {
+        let mut found = None;
+        self.map_params(|n, v| {
+            if n == name {
+                found = Some(v);
+            }
+            v
+        });
+        found
+    }
+
+    fn density(&self) -> D {
+        self.elastic.rho
+    }
+
+    fn p_wave_modulus(&self) -> D {
+        self.elastic.p_wave_modulus()
+    }
+
+    fn initial_state(&self) -> State<D> {
+        State::virgin(self.thermal.theta0)
+    }
+
+    fn update(
+        &self,
+        f: &M3<D>,
+        dt: f64,
+        old: &State<D>,
+    ) -> Result<(M3<D>, State<D>), MaterialError> {
+        let (onset, phi_trial) = match self.trial(f, old) {
+            Trial::Done(result) => return result,
+            Trial::Yields { onset, phi_trial } => (onset, phi_trial),
+        };
+        let (model, old_re, f_re) = (self.re(), old.re(), re(f));
+        // (Fp⁻¹, α) in real arithmetic, and τ where the return gives it.
+        let real = match self.return_map {
+            ReturnMap::Reference => {
+                // Perfectly plastic estimate of Δα (radial return with 3G) as the first guess.
+                let dalpha0 = phi_trial / (3.0 * model.elastic.shear_modulus());
+                let (fp_inv, alpha) = return_reference::solve(&model, &f_re, &old_re, dt, dalpha0)?;
+                RealReturn {
+                    fp_inv,
+                    alpha,
+                    tau: None,
+                }
+            }
+            ReturnMap::Principal => {
+                return_principal::solve(&model, &f_re, &old_re, dt, &onset)?.into()
+            }
+        };
+        self.after_return(f, dt, old, real)
+    }
+
+    /// The principal return four points at a time (`return_principal::solve_batch`); one
+    /// at a time for dual scalars and the reference return.
+    fn update_batch(&self, f: &[M3<D>], dt: f64, old: &[State<D>], deliver: &mut Deliver<D>) {
+        if D::NDERIV > 0 || self.return_map == ReturnMap::Reference {
+            return one_by_one(|f, old| self.update(f, dt, old), f, old, deliver);
+        }
+        let model = self.re();
+        let mut group = YieldingGroup::default();
+        for (i, (f_i, old_i)) in f.iter().zip(old).enumerate() {
+            match self.trial(f_i, old_i) {
+                Trial::Done(result) => deliver(i, result),
+                Trial::Yields { onset, .. } => {
+                    group.push(i, re(f_i), old_i.re(), onset);
+                    if group.len == MAX_LANES {
+                        self.return_group(&model, &mut group, f, dt, old, deliver);
+                    }
+                }
+            }
+        }
+        if group.len > 0 {
+            self.return_group(&model, &mut group, f, dt, old, deliver);
+        }
+    }
+}
+
+/// What the trial state decides.
+enum Trial<D> {
+    /// Elastic (or failed): the update's result.
+    Done(Result<(M3<D>, State<D>), MaterialError>),
+    /// Yields: its onset of flow and φ^tr = τ_VM^tr − τ_y0 > 0 [Pa].
+    Yields { onset: Onset, phi_trial: f64 },
+}
+
+/// A return in real arithmetic: Fp⁻¹, α, and τ where the return gives it.
+struct RealReturn {
+    fp_inv: M3<f64>,
+    alpha: f64,
+    tau: Option<M3<f64>>,
+}
+
+impl From<return_principal::Returned> for RealReturn {
+    fn from(r: return_principal::Returned) -> Self {
+        RealReturn {
+            fp_inv: r.fp_inv,
+            alpha: r.alpha,
+            tau: Some(r.tau),
+        }
+    }
+}
+
+/// Up to `MAX_LANES` yielding points of a batch, in real arithmetic, and their indices.
+#[derive(Default)]
+struct YieldingGroup {
+    len: usize,
+    index: [usize; MAX_LANES],
+    points: [Yielding; MAX_LANES],
+}
+
+impl YieldingGroup {
+    fn push(&mut self, index: usize, f: M3<f64>, old: State<f64>, onset: Onset) {
+        self.index[self.len] = index;
+        self.points[self.len] = Yielding { f, old, onset };
+        self.len += 1;
+    }
+}
+
+impl<D: Scalar> ElastoPlastic<D> {
+    /// The elastic trial state: its result if it does not yield.
+    #[inline(always)]
+    fn trial(&self, f: &M3<D>, old: &State<D>) -> Trial<D> {
+        let j = det(f);
+        if j.re() <= 0.0 || !j.re().is_finite() {
+            return Trial::Done(Err(MaterialError::InvertedDeformation { det_f: j.re() }));
+        }
+        let fe_trial = f * old.fp_inv;
+        let tau_trial = self.tau(&fe_trial, old.theta);
+        // Yielding is decided in real arithmetic (φ^tr is not carried further).
+        let old_re = old.re();
+        let flow = self.flow.map(|_, v| v.re());
+        let onset = flow.onset(old_re.alpha, old_re.theta, self.thermal.theta0.re());
+        let phi_trial = von_mises(&tau_trial).re() - onset.tau_y0;
+        if phi_trial <= 0.0 {
+            let new = State {
+                dalpha: c::<D>(0.0),
+                ..*old
+            };
+            return Trial::Done(Ok((tau_trial * j.recip(), new)));
+        }
+        Trial::Yields { onset, phi_trial }
+    }
+
+    /// The update from a return solved in real arithmetic: derivatives of dual scalars by
+    /// one implicit step, adiabatic heating, Cauchy stress.
+    fn after_return(
+        &self,
+        f: &M3<D>,
+        dt: f64,
+        old: &State<D>,
+        real: RealReturn,
+    ) -> Result<(M3<D>, State<D>), MaterialError> {
+        let (fp_inv, alpha, tau) = if D::NDERIV == 0 {
+            let fp_inv = lift(&real.fp_inv);
+            let tau = match real.tau {
+                Some(tau) => lift(&tau),
+                None => self.tau(&(f * fp_inv), old.theta),
+            };
+            (fp_inv, c::<D>(real.alpha), tau)
+        } else {
+            let (fp_inv, alpha) =
+                return_reference::implicit_step(self, f, old, dt, &real.fp_inv, real.alpha)?;
+            (fp_inv, alpha, self.tau(&(f * fp_inv), old.theta))
+        };
+        let dalpha = alpha - old.alpha;
+        // τ_VM = τ_y at the converged return (φ = 0 holds identically in the parameters,
+        // so their derivatives agree too) and costs no transcendental functions.
+        let heating = self.thermal.gamma_tq / (self.elastic.rho * self.thermal.c_theta)
+            * dalpha
+            * von_mises(&tau);
+        let new = State {
+            fp_inv,
+            alpha,
+            theta: old.theta + heating,
+            dalpha,
+        };
+        let sigma = tau * det(f).recip();
+        if !sigma.iter().all(|s| s.re().is_finite()) {
+            return Err(MaterialError::NonFinite {
+                what: "Cauchy stress",
+            });
+        }
+        Ok((sigma, new))
+    }
+
+    /// The returns of a group of yielding points in lockstep, delivered as updates.
+    fn return_group(
+        &self,
+        model: &ElastoPlastic<f64>,
+        group: &mut YieldingGroup,
+        f: &[M3<D>],
+        dt: f64,
+        old: &[State<D>],
+        deliver: &mut Deliver<D>,
+    ) {
+        let points = &group.points[..group.len];
+        return_principal::solve_batch(model, points, dt, &mut |k, returned| {
+            let i = group.index[k];
+            let result = returned.and_then(|r| self.after_return(&f[i], dt, &old[i], r.into()));
+            deliver(i, result);
+        });
+        group.len = 0;
+    }
+}
