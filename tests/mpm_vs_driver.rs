@@ -182,15 +182,16 @@ fn compress(material: Arc<dyn Material>, scheme: Scheme) -> Vec<Sample> {
     let t_end = STRAIN / RATE;
     let mut history = vec![sample(&solver)];
     let started = Instant::now();
-    solver
+    let ended = solver
         .run_until(
             t_end,
             &mut [&mut |s: &Solver<3>| {
                 history.push(sample(s));
-                Ok(())
+                mpm_core::solver::observer::CONTINUE
             }],
         )
         .unwrap_or_else(|e| panic!("{scheme:?}: {e}"));
+    assert!(ended.is_continue(), "{scheme:?}: stopped early");
     eprintln!(
         "{scheme:?}: {} particles, {ts}, {} steps in {:.2} s",
         solver.particles.len(),

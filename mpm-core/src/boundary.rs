@@ -16,9 +16,25 @@
 //! - Spring conditions on particles near a boundary (eq. 12.1):
 //!   f_MP = −κ_BC ((x_MP)_i − (X_MP)_i) in the chosen directions i [N], which keep working
 //!   when the grid moves under a grid shift.
+//! - Conditions on points in general (`PointCondition`, Karamelo's "fixes"): registered
+//!   with the solver (`Solver::add_condition`), each adds its forces on the points in the
+//!   step's `AppliedForces` stage, in the order registered; the springs are one.
 
+use crate::particles::Particles;
 use materials::signal::TimeSignal;
 use nalgebra::SVector;
+
+/// A condition on material points that acts through forces on them at t_n [N]
+/// (plane strain: per metre; axisymmetric: per radian of the ring, as the points' mass).
+pub trait PointCondition<const D: usize>: Send + Sync {
+    /// What the run log calls it (e.g. "springs on 40 points").
+    fn describe(&self) -> String;
+    /// Add its forces at time `t` [s] to `forces` (one per point, in point order).
+    fn add_forces(&self, t: f64, points: &Particles<D>, forces: &mut [SVector<f64, D>]);
+    /// The largest stiffness with which it ties a point [N/m] (0: none), for the time
+    /// step's spring limit on the lightest point (module `timestep`).
+    fn stiffness(&self) -> f64;
+}
 
 /// A set of grid nodes chosen by their position.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -189,6 +205,27 @@ pub struct SpringBc<const D: usize> {
     pub directions: [bool; D],
     /// κ_BC [N/m = kg/s²].
     pub stiffness: f64,
+}
+
+impl<const D: usize> PointCondition<D> for SpringBc<D> {
+    fn describe(&self) -> String {
+        let axes: Vec<&str> = (0..D)
+            .filter(|&i| self.directions[i])
+            .map(|i| ["x", "y", "z"][i])
+            .collect();
+        let (n, k, along) = (self.particles.len(), self.stiffness, axes.join(", "));
+        format!("springs on {n} points along {along}, κ = {k:e} N/m")
+    }
+
+    fn add_forces(&self, _t: f64, points: &Particles<D>, forces: &mut [SVector<f64, D>]) {
+        for &i in &self.particles {
+            forces[i] += self.force(&points.position[i], &points.reference_position[i]);
+        }
+    }
+
+    fn stiffness(&self) -> f64 {
+        self.stiffness
+    }
 }
 
 impl<const D: usize> SpringBc<D> {

@@ -11,6 +11,7 @@
 //! candidate particles (bounding sphere or plane distance within a margin that covers the
 //! motion until the next search); every step the exact inside test runs on the candidates.
 
+use crate::bar::ContactSprings;
 use crate::rigid::{Pose, RigidBody};
 use nalgebra::{Matrix3, SVector};
 
@@ -53,6 +54,9 @@ pub struct ContactState<const D: usize> {
     pub force: SVector<f64, D>,
     /// Number of particles in contact at the current step.
     pub active: usize,
+    /// The penalty springs of the points in contact along a bar-driven face's axis
+    /// (module `bar`); default for other bodies.
+    pub springs: ContactSprings,
 }
 
 impl<const D: usize> Default for ContactState<D> {
@@ -62,6 +66,7 @@ impl<const D: usize> Default for ContactState<D> {
             attachment: Vec::new(),
             force: SVector::zeros(),
             active: 0,
+            springs: ContactSprings::default(),
         }
     }
 }

@@ -37,7 +37,7 @@ pub mod watchdog;
 pub mod weights;
 
 pub use bar::{BarEnd, ContactSprings};
-pub use boundary::{NodeSet, SpringBc, VelocityBc};
+pub use boundary::{NodeSet, PointCondition, SpringBc, VelocityBc};
 pub use failure::{Cause, FailureKind, SimulationError};
 pub use grid::Grid;
 pub use kinematics::Kinematics;

@@ -10,7 +10,7 @@
 //! α [-], θ [K], J = det F [-], body index.
 
 use crate::kinematics::Kinematics;
-use crate::solver::observer::Observer;
+use crate::solver::observer::{Observer, Verdict, CONTINUE};
 use crate::solver::Solver;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
@@ -115,8 +115,9 @@ impl HistoryWriter {
 }
 
 impl<const D: usize> Observer<D> for HistoryWriter {
-    fn observe(&mut self, s: &Solver<D>) -> io::Result<()> {
-        self.write(s)
+    fn observe(&mut self, s: &Solver<D>) -> Verdict {
+        self.write(s)?;
+        CONTINUE
     }
 }
 
@@ -146,11 +147,11 @@ impl SnapshotWriter {
 }
 
 impl<const D: usize> Observer<D> for SnapshotWriter {
-    fn observe(&mut self, s: &Solver<D>) -> io::Result<()> {
+    fn observe(&mut self, s: &Solver<D>) -> Verdict {
         if s.time >= self.next as f64 * self.interval - 0.5 * s.dt {
             self.write_next(s)?;
         }
-        Ok(())
+        CONTINUE
     }
 }
 

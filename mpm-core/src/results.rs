@@ -10,7 +10,7 @@
 
 use crate::material_block::MaterialBlock;
 use crate::output::AXES;
-use crate::solver::observer::Observer;
+use crate::solver::observer::{Observer, Verdict, CONTINUE};
 use crate::solver::Solver;
 use materials::State;
 use std::io::{self, Write};
@@ -34,8 +34,9 @@ pub struct RestTracker {
     since: Vec<Option<f64>>,
 }
 
-impl<const D: usize> Observer<D> for RestTracker {
-    fn observe(&mut self, s: &Solver<D>) -> io::Result<()> {
+impl RestTracker {
+    /// Take the kinetic energy of every body at the current state.
+    pub fn sample<const D: usize>(&mut self, s: &Solver<D>) {
         self.peak.resize(s.blocks.len(), 0.0);
         self.since.resize(s.blocks.len(), None);
         for b in 0..s.blocks.len() {
@@ -48,7 +49,13 @@ impl<const D: usize> Observer<D> for RestTracker {
                 (false, _) => None,
             };
         }
-        Ok(())
+    }
+}
+
+impl<const D: usize> Observer<D> for RestTracker {
+    fn observe(&mut self, s: &Solver<D>) -> Verdict {
+        self.sample(s);
+        CONTINUE
     }
 }
 
@@ -145,13 +152,13 @@ mod tests {
         );
         s.initialize();
         let mut rest = RestTracker::default();
-        rest.observe(&s).unwrap();
+        rest.sample(&s);
         let (dt, steps) = (1e-4, 600);
         let mut travel = 0.0;
         for n in 0..steps {
             travel += v0 * (1.0f64 - 50.0 * dt).powi(n + 1) * dt;
             s.step().unwrap();
-            rest.observe(&s).unwrap();
+            rest.sample(&s);
         }
         let r = collect(&s, &rest);
         let get = |name: &str| r.iter().find(|x| x.name == name).unwrap().value;

@@ -15,7 +15,6 @@ use crate::solver::observer::{Every, Observer};
 use crate::solver::{RunError, Solver, TimeStepChange};
 use crate::timestep::TimeStep;
 use materials::limits::TIME_STEPS;
-use std::io;
 use std::ops::ControlFlow;
 use std::path::Path;
 
@@ -82,15 +81,13 @@ fn run<const D: usize>(
         inner: RestTracker::default(),
     };
     let mut snapshot = SnapshotWriter::new(dir, end, snapshots);
-    let mut report = |s: &Solver<D>| match progress(s.time, end) {
-        ControlFlow::Continue(()) => Ok(()),
-        ControlFlow::Break(()) => Err(io::Error::from(io::ErrorKind::Interrupted)),
-    };
+    // the initial state
+    history.inner.write(&solver)?;
+    rest.inner.sample(&solver);
+    snapshot.write_next(&solver)?;
+    let mut report = |s: &Solver<D>| Ok(progress(s.time, end));
     let mut observers: [&mut dyn Observer<D>; 4] =
         [&mut history, &mut rest, &mut snapshot, &mut report];
-    for o in observers.iter_mut().take(3) {
-        o.observe(&solver)?;
-    }
     let too_long = TIME_STEPS.check(end / time_step.dt, || {
         format!("time.end = {end:e} s at {time_step}")
     });
@@ -104,15 +101,14 @@ fn run<const D: usize>(
         Ok(_) => solver.run_until(end, &mut observers),
     };
     let result = match result {
-        Err(RunError::Io(e)) if e.kind() == io::ErrorKind::Interrupted => {
-            Err(RunError::Simulation(SimulationError {
-                step: solver.step,
-                time: solver.time,
-                particle: None,
-                cause: Cause::Interrupted,
-            }))
-        }
-        other => other,
+        Ok(ControlFlow::Break(())) => Err(RunError::Simulation(SimulationError {
+            step: solver.step,
+            time: solver.time,
+            particle: None,
+            cause: Cause::Interrupted,
+        })),
+        Ok(ControlFlow::Continue(())) => Ok(()),
+        Err(e) => Err(e),
     };
     let failure = match result {
         Ok(()) => None,
@@ -123,7 +119,7 @@ fn run<const D: usize>(
             Some(e)
         }
     };
-    rest.inner.observe(&solver)?;
+    rest.inner.sample(&solver);
     let results = results::collect(&solver, &rest.inner);
     results::write_csv(&dir.join("results.csv"), &results)?;
     Ok(RunSummary {

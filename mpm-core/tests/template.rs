@@ -112,7 +112,8 @@ fn late_platen_force(template: &Template<3>, a: f64) -> f64 {
     let mut s = template.instantiate(&[("specimen", steel(a))]).unwrap();
     let ts = s.initialize();
     let mut forces = ForceHistory::default();
-    s.run_until(END, &mut [&mut forces]).unwrap();
+    let ended = s.run_until(END, &mut [&mut forces]).unwrap();
+    assert!(ended.is_continue());
     eprintln!(
         "A = {a:e} Pa: {} points, {} steps, {ts}",
         s.particles.len(),

@@ -4,7 +4,7 @@
 use super::{Discretized, Drive, ShpbModel, INCIDENT, SPECIMEN, TRANSMITTER};
 use crate::shpb::signal::interpolate;
 use materials::Material;
-use mpm_core::solver::observer::Observer;
+use mpm_core::solver::observer::{observe_all, Observer, Verdict};
 use mpm_core::solver::RigidContact;
 use mpm_core::{Solver, Template};
 use std::sync::Arc;
@@ -102,14 +102,16 @@ impl ShpbModel {
         let end = end.min(self.end_s());
         match &self.template {
             Discretized::Axisymmetric(t) => self.run_inline(t, material, end, &mut |s| {
-                observers
+                let mut each = observers
                     .iter_mut()
-                    .try_for_each(|o| Observer::<2>::observe(&mut **o, s))
+                    .map(|o| &mut **o as &mut dyn Observer<2>);
+                observe_all(&mut each.by_ref().collect::<Vec<_>>(), s)
             }),
             Discretized::Solid(t) => self.run_inline(t, material, end, &mut |s| {
-                observers
+                let mut each = observers
                     .iter_mut()
-                    .try_for_each(|o| Observer::<3>::observe(&mut **o, s))
+                    .map(|o| &mut **o as &mut dyn Observer<3>);
+                observe_all(&mut each.by_ref().collect::<Vec<_>>(), s)
             }),
         }
     }
@@ -119,18 +121,24 @@ impl ShpbModel {
         template: &Template<D>,
         material: Arc<dyn Material>,
         end: f64,
-        observe: &mut dyn FnMut(&Solver<D>) -> std::io::Result<()>,
+        observe: &mut dyn FnMut(&Solver<D>) -> Verdict,
     ) -> anyhow::Result<ShpbRun> {
         let start = Instant::now();
         let mut solver = template.instantiate(&[(SPECIMEN, material)])?;
         solver.initialize();
         let mut h = FaceHistory::default();
-        let mut each = |s: &Solver<D>| -> std::io::Result<()> {
+        let mut each = |s: &Solver<D>| -> Verdict {
             self.record(s, &mut h);
             observe(s)
         };
-        each(&solver)?;
-        solver.run_until(end, &mut [&mut each])?;
+        let first = each(&solver)?;
+        if first.is_break() || solver.run_until(end, &mut [&mut each])?.is_break() {
+            anyhow::bail!(
+                "the SHPB run was stopped by its caller at step {} (t = {:.4e} s)",
+                solver.step,
+                solver.time
+            );
+        }
         Ok(ShpbRun {
             history: h,
             steps: solver.step,

@@ -9,6 +9,7 @@ use crate::boundary::{NodeSet, SpringBc, VelocityBc};
 use crate::solver::Solver;
 use materials::signal::TimeSignal;
 use nalgebra::SVector;
+use std::sync::Arc;
 
 pub(super) fn add_velocity_bcs<const D: usize>(
     solver: &mut Solver<D>,
@@ -102,11 +103,11 @@ pub(super) fn add_springs_and_tractions<const D: usize>(
         if particles.is_empty() {
             return Err(check.err(format!("{field}.region"), "holds no particle"));
         }
-        solver.springs.push(SpringBc {
+        solver.add_condition(Arc::new(SpringBc {
             particles,
             directions,
             stiffness: check.positive(&format!("{field}.stiffness"), s.stiffness)?,
-        });
+        }));
     }
     for (k, t) in spec.tractions.iter().enumerate() {
         let field = format!("tractions[{k}]");

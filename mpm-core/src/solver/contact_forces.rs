@@ -1,10 +1,13 @@
-//! Forces on the points from outside the continuum (contact forces as surface loads,
-//! module `surface_loads`): applied (traction) forces times the
-//! load factor of `traction_history` at t_n, boundary
-//! springs (eq. 12.1) and penalty contact with rigid bodies (eq. 9.2-9.7); a face on an
-//! elastic bar then moves with its contact force (module `bar`). Contact
-//! candidates are searched every `search_interval` steps within a margin that covers the
-//! travel of points and body until the next search.
+//! Forces on the points from outside the continuum, three stages of a step:
+//! - `AppliedForces`: applied (traction) forces times the load factor of
+//!   `traction_history` at t_n, then the forces of every registered point condition
+//!   (boundary springs, eq. 12.1), in the order registered;
+//! - `ContactForces`: penalty contact with every rigid body (eq. 9.2-9.7), as surface
+//!   loads (module `surface_loads`). Candidates are searched every `search_interval`
+//!   steps within a margin that covers the travel of points and body until the next
+//!   search;
+//! - `BarFaces`: a face on an elastic bar moves with its contact force and the penalty
+//!   springs of the points pressing on it (module `bar`).
 
 use super::surface_loads::SurfaceLoad;
 use super::Solver;
@@ -15,22 +18,27 @@ use nalgebra::SVector;
 use rayon::prelude::*;
 
 impl<const D: usize> Solver<D> {
-    /// Applied, spring (eq. 12.1) and penalty contact (eq. 9.2-9.7) forces on particles.
-    pub(super) fn external_forces(&mut self) {
+    /// Applied forces times the load factor at t_n, then every point condition's forces.
+    pub(super) fn applied_forces(&mut self) {
         let p = &self.particles;
         let factor = self
             .traction_history
             .as_ref()
             .map_or(1.0, |h| h.at(self.time));
-        self.scratch.loads.clear();
         for (f, applied) in self.scratch.force.iter_mut().zip(&p.applied_force) {
             *f = applied * factor;
         }
-        for s in &self.springs {
-            for &i in &s.particles {
-                self.scratch.force[i] += s.force(&p.position[i], &p.reference_position[i]);
-            }
+        for condition in &self.conditions {
+            condition.add_forces(self.time, p, &mut self.scratch.force);
         }
+    }
+
+    /// Penalty contact forces (eq. 9.2-9.7) of every rigid body on the points, as surface
+    /// loads, with each body's total force and, for a bar-driven face, the springs of the
+    /// points pressing on it.
+    pub(super) fn contact_forces(&mut self) {
+        let p = &self.particles;
+        self.scratch.loads.clear();
         let (t, dt, step, h) = (self.time, self.dt, self.step, self.grid.min_spacing());
         // the fastest point, for the search margin: only computed when a search is due
         let mut max_speed = None;
@@ -112,12 +120,21 @@ impl<const D: usize> Solver<D> {
                     }
                 }
             }
+            if springs.stiffness > 0.0 {
+                springs.velocity /= springs.stiffness;
+            }
+            c.springs = springs;
+        }
+    }
+
+    /// Every face on an elastic bar moves with its contact force (compression positive:
+    /// the specimen pushes the face against its axis) and its contact springs.
+    pub(super) fn bar_faces(&mut self) {
+        let (t, dt) = (self.time, self.dt);
+        for rc in &mut self.rigid {
             if let Some(bar) = &mut rc.body.motion.bar {
-                if springs.stiffness > 0.0 {
-                    springs.velocity /= springs.stiffness;
-                }
-                // the specimen pushes the face against the axis: compression positive
-                bar.advance(t, dt, -c.force.dot(&bar.axis), springs);
+                let c = &rc.contact;
+                bar.advance(t, dt, -c.force.dot(&bar.axis), c.springs);
             }
         }
     }

@@ -186,14 +186,22 @@ impl Deformation<'_> {
     }
 }
 
+/// What a grid-to-particle transfer updates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Gather {
+    /// v_MP ← v_MP + a_MP Δt, and ṽ stored for the position update (algorithm 11).
+    Velocity,
+    /// F, V, σ and history (algorithm 12).
+    Stress,
+    /// Both, in one pass over the points (USL).
+    VelocityAndStress,
+}
+
 impl<const D: usize> Solver<D> {
-    /// Grid-to-particle transfer (algorithms 11-12). With `motion`: v_MP ← v_MP + a_MP Δt
-    /// and ṽ stored for the position update. With `deformation`: F, V, σ and history.
-    pub(super) fn gather(
-        &mut self,
-        motion: bool,
-        deformation: bool,
-    ) -> Result<(), SimulationError> {
+    /// Grid-to-particle transfer (algorithms 11-12) of what `what` names.
+    pub(super) fn gather(&mut self, what: Gather) -> Result<(), SimulationError> {
+        let motion = what != Gather::Stress;
+        let deformation = what != Gather::Velocity;
         let dt = self.dt;
         let grid = &self.grid;
         let p = &mut self.particles;

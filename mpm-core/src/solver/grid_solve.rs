@@ -83,10 +83,19 @@ impl<const D: usize> NodeSolve<'_, D> {
     }
 }
 
+/// What the grid solve computes at the nodes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum NodalUpdate {
+    /// a = (f − α_d p)/m and v = p/m + a Δt.
+    Accelerate,
+    /// v = p/m and a = 0 (USF before the stress update; MUSL's remapped velocity).
+    VelocityOnly,
+}
+
 impl<const D: usize> Solver<D> {
-    /// Grid solve (algorithm 10): with `accelerate`, a = (f − α_d p)/m and
-    /// v = p/m + a Δt; without, v = p/m and a = 0. Velocity conditions last (eq. 7.28).
-    pub(super) fn solve_grid(&mut self, accelerate: bool) {
+    /// Grid solve (algorithm 10) of `update`; velocity conditions last (eq. 7.28).
+    pub(super) fn solve_grid(&mut self, update: NodalUpdate) {
+        let accelerate = update == NodalUpdate::Accelerate;
         let t_half = self.time + 0.5 * self.dt;
         let solve = NodeSolve {
             dt: self.dt,

@@ -25,7 +25,7 @@ impl<const D: usize> Solver<D> {
             .rigid
             .iter()
             .map(|r| r.body.penalty_of(lightest))
-            .chain(self.springs.iter().map(|s| s.stiffness))
+            .chain(self.conditions.iter().map(|c| c.stiffness()))
             .fold(0.0, f64::max);
         let spring = (stiffest > 0.0).then_some((stiffest, lightest));
         let ts = timestep::choose(

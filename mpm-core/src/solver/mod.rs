@@ -23,11 +23,11 @@ mod surface_loads;
 mod time_step;
 
 pub use energies::Energies;
-pub use scheme::{Scheme, Stage};
+pub use scheme::{unmet_reads, Data, Scheme, Stage};
 pub use settings::Settings;
 pub use time_step::TimeStepChange;
 
-use crate::boundary::{SpringBc, VelocityBc};
+use crate::boundary::{PointCondition, VelocityBc};
 use crate::contact::ContactState;
 use crate::failure::{Cause, SimulationError};
 use crate::grid::Grid;
@@ -42,7 +42,8 @@ use crate::weights::WeightCache;
 use materials::signal::TimeSignal;
 use materials::Material;
 use nalgebra::SVector;
-use observer::Observer;
+use observer::{observe_all, Observer};
+use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -92,7 +93,8 @@ pub struct Solver<const D: usize> {
     pub blocks: Vec<MaterialBlock>,
     pub grid: Grid<D>,
     pub velocity_bcs: Vec<VelocityBc<D>>,
-    pub springs: Vec<SpringBc<D>>,
+    /// Conditions acting through forces on points (`add_condition`).
+    pub conditions: Vec<Arc<dyn PointCondition<D>>>,
     pub rigid: Vec<RigidContact<D>>,
     /// Named particles whose positions are recorded.
     pub control_points: Vec<(String, usize)>,
@@ -123,7 +125,7 @@ impl<const D: usize> Solver<D> {
             blocks: Vec::new(),
             grid,
             velocity_bcs: Vec::new(),
-            springs: Vec::new(),
+            conditions: Vec::new(),
             rigid: Vec::new(),
             control_points: Vec::new(),
             traction_history: None,
@@ -203,6 +205,12 @@ impl<const D: usize> Solver<D> {
         block
     }
 
+    /// Register a condition on points: its forces are added in the `AppliedForces` stage
+    /// of every step, after the applied forces and the conditions registered before it.
+    pub fn add_condition(&mut self, condition: Arc<dyn PointCondition<D>>) {
+        self.conditions.push(condition);
+    }
+
     pub fn add_rigid_body(&mut self, body: RigidBody<D>) {
         self.rigid.push(RigidContact {
             body,
@@ -255,21 +263,25 @@ impl<const D: usize> Solver<D> {
     }
 
     fn run_stage(&mut self, stage: Stage) -> Result<(), SimulationError> {
+        use gather::Gather;
+        use grid_solve::NodalUpdate;
         use scatter::Transfer;
         match stage {
             Stage::FitGrid => self.refit_grid()?,
-            Stage::ExternalForces => self.external_forces(),
+            Stage::AppliedForces => self.applied_forces(),
+            Stage::ContactForces => self.contact_forces(),
+            Stage::BarFaces => self.bar_faces(),
             Stage::MapMassMomentumForce => self.scatter(Transfer::ALL),
             Stage::MapMassMomentum => self.scatter(Transfer::MASS_MOMENTUM),
             Stage::MapForce => self.scatter(Transfer::FORCE),
             Stage::MapMomentum => self.scatter(Transfer::MOMENTUM),
-            Stage::SolveMomentum => self.solve_grid(true),
-            Stage::NodalVelocity => self.solve_grid(false),
-            Stage::UpdateVelocity => self.gather(true, false)?,
-            Stage::UpdateStress => self.gather(false, true)?,
-            Stage::UpdateVelocityAndStress => self.gather(true, true)?,
-            Stage::Advect => {
-                self.advect()?;
+            Stage::SolveMomentum => self.solve_grid(NodalUpdate::Accelerate),
+            Stage::NodalVelocity => self.solve_grid(NodalUpdate::VelocityOnly),
+            Stage::UpdateVelocity => self.gather(Gather::Velocity)?,
+            Stage::UpdateStress => self.gather(Gather::Stress)?,
+            Stage::UpdateVelocityAndStress => self.gather(Gather::VelocityAndStress)?,
+            Stage::Advect => self.advect()?,
+            Stage::AdvanceTime => {
                 self.time += self.dt;
                 self.step += 1;
             }
@@ -289,21 +301,21 @@ impl<const D: usize> Solver<D> {
     }
 
     /// Run until `t_end`, reporting the state to every observer after every step (the
-    /// initial state is the caller's to report), in a warm pool (`warm`: the pool's other
-    /// threads spin for the step's loops until the run ends).
+    /// initial state is the caller's to report), in a warm pool (`parallel`). `Break`:
+    /// an observer stopped the run (at `self.step`, `self.time`).
     pub fn run_until(
         &mut self,
         t_end: f64,
         observers: &mut [&mut dyn Observer<D>],
-    ) -> Result<(), RunError> {
+    ) -> Result<ControlFlow<()>, RunError> {
         crate::parallel::with_warm_pool(|| {
             while self.time < t_end - 0.5 * self.dt {
                 self.step()?;
-                for o in observers.iter_mut() {
-                    o.observe(self)?;
+                if observe_all(observers, self)?.is_break() {
+                    return Ok(ControlFlow::Break(()));
                 }
             }
-            Ok(())
+            Ok(ControlFlow::Continue(()))
         })
     }
 }

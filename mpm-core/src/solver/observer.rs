@@ -9,16 +9,39 @@
 use crate::solver::Solver;
 use nalgebra::SVector;
 use std::io;
+use std::ops::ControlFlow;
+
+/// What an observer answers: go on, or stop the run after this step (`Break`); an
+/// output error stops it too.
+pub type Verdict = io::Result<ControlFlow<()>>;
+
+/// Go on.
+pub const CONTINUE: Verdict = Ok(ControlFlow::Continue(()));
 
 pub trait Observer<const D: usize> {
     /// Called with the initial state before the first step and after every step.
-    fn observe(&mut self, s: &Solver<D>) -> io::Result<()>;
+    fn observe(&mut self, s: &Solver<D>) -> Verdict;
 }
 
-impl<const D: usize, F: FnMut(&Solver<D>) -> io::Result<()>> Observer<D> for F {
-    fn observe(&mut self, s: &Solver<D>) -> io::Result<()> {
+impl<const D: usize, F: FnMut(&Solver<D>) -> Verdict> Observer<D> for F {
+    fn observe(&mut self, s: &Solver<D>) -> Verdict {
         self(s)
     }
+}
+
+/// Every observer sees the state (in order, whatever the others answer); `Break` if any
+/// of them asks to stop.
+pub fn observe_all<const D: usize>(
+    observers: &mut [&mut dyn Observer<D>],
+    s: &Solver<D>,
+) -> Verdict {
+    let mut verdict = ControlFlow::Continue(());
+    for o in observers.iter_mut() {
+        if o.observe(s)?.is_break() {
+            verdict = ControlFlow::Break(());
+        }
+    }
+    Ok(verdict)
 }
 
 /// An observer that sees only every `every`-th step (and the initial state).
@@ -28,11 +51,11 @@ pub struct Every<O> {
 }
 
 impl<const D: usize, O: Observer<D>> Observer<D> for Every<O> {
-    fn observe(&mut self, s: &Solver<D>) -> io::Result<()> {
-        if s.step.is_multiple_of(self.every) {
-            self.inner.observe(s)?;
+    fn observe(&mut self, s: &Solver<D>) -> Verdict {
+        match s.step.is_multiple_of(self.every) {
+            true => self.inner.observe(s),
+            false => CONTINUE,
         }
-        Ok(())
     }
 }
 
@@ -87,11 +110,11 @@ impl<T> Recording<T> {
 pub struct ForceHistory<const D: usize>(pub Recording<SVector<f64, D>>);
 
 impl<const D: usize> Observer<D> for ForceHistory<D> {
-    fn observe(&mut self, s: &Solver<D>) -> io::Result<()> {
+    fn observe(&mut self, s: &Solver<D>) -> Verdict {
         let names = || s.rigid.iter().map(|r| r.body.name.clone()).collect();
         self.0
             .record(s.time, names, s.rigid.iter().map(|r| r.contact.force));
-        Ok(())
+        CONTINUE
     }
 }
 
@@ -100,13 +123,13 @@ impl<const D: usize> Observer<D> for ForceHistory<D> {
 pub struct ControlPointPaths<const D: usize>(pub Recording<SVector<f64, D>>);
 
 impl<const D: usize> Observer<D> for ControlPointPaths<D> {
-    fn observe(&mut self, s: &Solver<D>) -> io::Result<()> {
+    fn observe(&mut self, s: &Solver<D>) -> Verdict {
         let names = || s.control_points.iter().map(|(n, _)| n.clone()).collect();
         let x = s
             .control_points
             .iter()
             .map(|(_, p)| s.particles.position[*p]);
         self.0.record(s.time, names, x);
-        Ok(())
+        CONTINUE
     }
 }
