@@ -72,7 +72,7 @@
 
 use materials::driver::{self, Control, LoadPath, Ramp, Record, Temperature};
 use materials::{load_material, AnyModel, Material, MaterialError, State};
-use mpm_core::discretize::{fill, Shape};
+use mpm_core::discretize::{fill, Geometry};
 use mpm_core::{Kinematics, NodeSet, Scheme, Settings, Solver, VelocityBc};
 use mpw_workspace_tests::data_dir;
 use nalgebra::{Matrix3, Vector3};
@@ -149,7 +149,7 @@ fn compress(material: Arc<dyn Material>, scheme: Scheme) -> Vec<Sample> {
     let mut solver = Solver::new(settings);
     let extent = Vector3::new(NX as f64, NX as f64, NZ as f64) * CELL;
     let points = fill(
-        &Shape::Box {
+        &Geometry::Box {
             min: Vector3::zeros(),
             max: extent,
         },

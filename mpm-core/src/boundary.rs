@@ -32,7 +32,7 @@ pub trait PointCondition<const D: usize>: Send + Sync {
     /// Add its forces at time `t` [s] to `forces` (one per point, in point order).
     fn add_forces(&self, t: f64, points: &Particles<D>, forces: &mut [SVector<f64, D>]);
     /// The largest stiffness with which it ties a point [N/m] (0: none), for the time
-    /// step's spring limit on the lightest point (module `timestep`).
+    /// step's spring limit on the lightest point (module `solver::time_step`).
     fn stiffness(&self) -> f64;
 }
 

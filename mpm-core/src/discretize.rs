@@ -28,7 +28,7 @@ use std::f64::consts::PI;
 /// A solid primitive. `Ball` is a disk in 2D and a sphere in 3D; `Cylinder` (3D) runs
 /// from `start` to `end`; `Polygon` (2D) is any simple polygon.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Shape<const D: usize> {
+pub enum Geometry<const D: usize> {
     Box {
         min: SVector<f64, D>,
         max: SVector<f64, D>,
@@ -47,19 +47,19 @@ pub enum Shape<const D: usize> {
     },
 }
 
-impl<const D: usize> Shape<D> {
+impl<const D: usize> Geometry<D> {
     /// Axis-aligned bounding box.
     pub fn bounds(&self) -> (SVector<f64, D>, SVector<f64, D>) {
         match self {
-            Shape::Box { min, max } => (*min, *max),
-            Shape::Ball { center, radius } => {
+            Geometry::Box { min, max } => (*min, *max),
+            Geometry::Ball { center, radius } => {
                 (center.add_scalar(-radius), center.add_scalar(*radius))
             }
-            Shape::Cylinder { start, end, radius } => (
+            Geometry::Cylinder { start, end, radius } => (
                 start.inf(end).add_scalar(-radius),
                 start.sup(end).add_scalar(*radius),
             ),
-            Shape::Polygon { vertices } => vertices.iter().fold(
+            Geometry::Polygon { vertices } => vertices.iter().fold(
                 (
                     SVector::repeat(f64::INFINITY),
                     SVector::repeat(f64::NEG_INFINITY),
@@ -72,7 +72,7 @@ impl<const D: usize> Shape<D> {
 
 /// Material points (position, volume) filling `shape` with pieces of about `spacing`.
 pub fn fill<const D: usize>(
-    shape: &Shape<D>,
+    shape: &Geometry<D>,
     spacing: SVector<f64, D>,
     kinematics: Kinematics,
 ) -> Vec<(SVector<f64, D>, f64)> {
@@ -84,20 +84,20 @@ pub fn fill<const D: usize>(
             .collect::<Vec<_>>()
     };
     let pieces = match shape {
-        Shape::Box { min, max } => box_lattice(min, max, &spacing),
-        Shape::Polygon { vertices } => {
+        Geometry::Box { min, max } => box_lattice(min, max, &spacing),
+        Geometry::Polygon { vertices } => {
             let polygon: Vec<[f64; 2]> = vertices.iter().map(|v| [v[0], v[1]]).collect();
             let (lo, hi) = shape.bounds();
             let step = [spacing[0], spacing[1]];
             let pieces = clipped_lattice(&polygon, [lo[0], lo[1]], [hi[0], hi[1]], step);
             planar(pieces, &SVector::zeros())
         }
-        Shape::Ball { center, radius } if D == 2 => planar(disk(*radius, s), center),
-        Shape::Ball { center, radius } => shells::<D>(*radius, s)
+        Geometry::Ball { center, radius } if D == 2 => planar(disk(*radius, s), center),
+        Geometry::Ball { center, radius } => shells::<D>(*radius, s)
             .into_iter()
             .map(|(x, v)| (center + x, v))
             .collect(),
-        Shape::Cylinder { start, end, radius } => cylinder(start, end, *radius, s),
+        Geometry::Cylinder { start, end, radius } => cylinder(start, end, *radius, s),
     };
     pieces
         .into_iter()
@@ -330,7 +330,7 @@ mod tests {
         for s in [0.013, 0.02, 0.031] {
             let c = Vector3::new(0.3, 0.2, 0.1);
             let ball = fill(
-                &Shape::Ball {
+                &Geometry::Ball {
                     center: c,
                     radius: 0.2,
                 },
@@ -345,7 +345,7 @@ mod tests {
                 Vector3::new(0.1, 0.1, 0.2828427),
             );
             let cyl = fill(
-                &Shape::Cylinder {
+                &Geometry::Cylinder {
                     start: a,
                     end: b,
                     radius: 0.1,
@@ -356,7 +356,7 @@ mod tests {
             assert!((volume(&cyl) / (PI * 0.01 * (b - a).norm()) - 1.0).abs() < 1e-12);
             assert!((centroid(&cyl) - (a + b) / 2.0).norm() < 1e-12);
             let disk = fill(
-                &Shape::Ball {
+                &Geometry::Ball {
                     center: Vector2::new(1.0, 2.0),
                     radius: 0.2,
                 },
@@ -365,7 +365,7 @@ mod tests {
             );
             assert!((volume(&disk) / (PI * 0.04) - 1.0).abs() < 1e-12);
             let tri = fill(
-                &Shape::Polygon {
+                &Geometry::Polygon {
                     vertices: vec![
                         Vector2::new(0.0, 0.0),
                         Vector2::new(1.0, 0.0),
@@ -378,7 +378,7 @@ mod tests {
             assert!((volume(&tri) - 0.5).abs() < 1e-12);
             assert!((centroid(&tri) - Vector2::repeat(1.0 / 3.0)).norm() < 1e-12);
             let block = fill(
-                &Shape::Box {
+                &Geometry::Box {
                     min: Vector3::new(0.0, 0.0, 0.02),
                     max: Vector3::repeat(1.0),
                 },
@@ -400,7 +400,7 @@ mod tests {
     fn axisymmetric_points_are_the_exact_rings() {
         let s = Vector2::repeat(0.013);
         let cyl = fill(
-            &Shape::Box {
+            &Geometry::Box {
                 min: Vector2::zeros(),
                 max: Vector2::new(0.1, 0.3),
             },
@@ -409,7 +409,7 @@ mod tests {
         );
         assert!((volume(&cyl) / (PI * 0.01 * 0.3) - 1.0).abs() < 1e-12);
         let cone = fill(
-            &Shape::Polygon {
+            &Geometry::Polygon {
                 vertices: vec![
                     Vector2::new(0.0, 0.0),
                     Vector2::new(0.1, 0.0),
@@ -421,7 +421,7 @@ mod tests {
         );
         assert!((volume(&cone) / (PI * 0.01 * 0.3 / 3.0) - 1.0).abs() < 1e-12);
         let torus = fill(
-            &Shape::Ball {
+            &Geometry::Ball {
                 center: Vector2::new(0.5, 0.0),
                 radius: 0.2,
             },
@@ -442,7 +442,7 @@ mod tests {
         for n in [4, 8] {
             let s = radius / n as f64;
             let cyl = fill(
-                &Shape::Cylinder {
+                &Geometry::Cylinder {
                     start: Vector3::zeros(),
                     end: Vector3::new(0.0, 0.0, 0.01),
                     radius,

@@ -213,7 +213,8 @@ pub fn write_snapshot<const D: usize>(
     scalar("alpha", &mut history(|s| s.alpha))?;
     scalar("theta", &mut history(|s| s.theta))?;
     scalar("J", &mut p.deformation.iter().map(|f| f.determinant()))?;
-    scalar("body", &mut p.body.iter().map(|&b| b as f64))?;
+    let body = |(k, b): (usize, &crate::MaterialBlock)| b.range.clone().map(move |_| k as f64);
+    scalar("body", &mut solver.blocks.iter().enumerate().flat_map(body))?;
     out.flush()?;
     Ok(path)
 }

@@ -1,6 +1,7 @@
 //! Material points as a structure of arrays (table 7.2): one `Vec` per property, so that
 //! every loop touches only the data it needs. Material history (F^p⁻¹, α, θ) lives in the
-//! `MaterialBlock` that owns a contiguous range of particles.
+//! `MaterialBlock` that owns a contiguous range of particles (which is also what says
+//! which body a point belongs to: nothing here repeats it).
 //!
 //! Units: position x and reference position X [m], velocity v [m/s], mass m [kg], volume
 //! V (current) and V0 (reference) [m³] (plane strain: per metre of thickness; axisymmetric:
@@ -23,8 +24,6 @@ pub struct Particles<const D: usize> {
     pub stress: Vec<Matrix3<f64>>,
     /// Constant applied force, e.g. the traction equivalent of eq. 7.31 / 8.3 [N].
     pub applied_force: Vec<SVector<f64, D>>,
-    /// Index of the body (= material block) the particle belongs to.
-    pub body: Vec<u32>,
     /// Half-widths a_i of the point's box-shaped domain in the reference configuration
     /// [m] (the domain vectors of CPDI, eq. 10.4, are F a_i e_i); zero for a point whose
     /// domain is not given. Contact uses it: a rigid surface touches the domain, not the
@@ -46,14 +45,7 @@ impl<const D: usize> Particles<D> {
     }
 
     /// Append one particle at rest in the reference configuration.
-    pub fn push(
-        &mut self,
-        x: SVector<f64, D>,
-        v: SVector<f64, D>,
-        volume: f64,
-        density: f64,
-        body: u32,
-    ) {
+    pub fn push(&mut self, x: SVector<f64, D>, v: SVector<f64, D>, volume: f64, density: f64) {
         self.position.push(x);
         self.reference_position.push(x);
         self.velocity.push(v);
@@ -63,7 +55,6 @@ impl<const D: usize> Particles<D> {
         self.deformation.push(Matrix3::identity());
         self.stress.push(Matrix3::zeros());
         self.applied_force.push(SVector::zeros());
-        self.body.push(body);
         self.half_size.push(SVector::zeros());
         if !self.hex.is_empty() {
             self.hex.push(Hex::none());
@@ -74,6 +65,5 @@ impl<const D: usize> Particles<D> {
     /// scratch).
     pub const BYTES_PER_PARTICLE: usize = 5 * std::mem::size_of::<SVector<f64, D>>()
         + 3 * std::mem::size_of::<f64>()
-        + 2 * std::mem::size_of::<Matrix3<f64>>()
-        + std::mem::size_of::<u32>();
+        + 2 * std::mem::size_of::<Matrix3<f64>>();
 }

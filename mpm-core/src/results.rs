@@ -116,7 +116,7 @@ pub fn write_csv(path: &Path, results: &[NamedResult]) -> io::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::discretize::{fill, Shape};
+    use crate::discretize::{fill, Geometry};
     use crate::kinematics::Kinematics;
     use crate::solver::Settings;
     use materials::NeoHooke;
@@ -136,7 +136,7 @@ mod tests {
         let mut s = Solver::new(settings);
         let min = Vector2::new(0.2, 0.2);
         let points = fill(
-            &Shape::Box {
+            &Geometry::Box {
                 min,
                 max: Vector2::new(0.6, 0.4),
             },

@@ -1,7 +1,7 @@
 //! A discretized model made once and run many times (the fitting loop's use): the
 //! particles, conditions, rigid bodies and settings of a solver before its first step.
-//! `instantiate` clones it and gives named bodies new materials (new parameters), with
-//! their history reset and their masses m = ρ V0 recomputed, without re-reading or
+//! `instantiate` clones it and gives named bodies new materials (new parameters,
+//! `Solver::set_material`: history reset, masses m = ρ V0), without re-reading or
 //! re-discretizing anything. A template is `Sync`: many solvers can be instantiated from
 //! one in parallel.
 
@@ -45,7 +45,7 @@ impl<const D: usize> Template<D> {
     ) -> Result<Solver<D>, TemplateError> {
         let mut s = self.model.clone();
         for (name, material) in materials {
-            let Some(block) = s.blocks.iter_mut().find(|b| b.name == *name) else {
+            let Some(block) = s.blocks.iter().position(|b| b.name == *name) else {
                 return Err(TemplateError::UnknownBody {
                     name: name.to_string(),
                     bodies: s
@@ -56,12 +56,7 @@ impl<const D: usize> Template<D> {
                         .join(", "),
                 });
             };
-            block.material = material.clone();
-            block.state = vec![material.initial_state(); block.range.len()];
-            let rho = material.density();
-            for p in block.range.clone() {
-                s.particles.mass[p] = s.particles.volume0[p] * rho;
-            }
+            s.set_material(block, material.clone());
         }
         Ok(s)
     }

@@ -7,7 +7,7 @@
 use materials::param_file::parse_material;
 use materials::signal::TimeSignal;
 use materials::{Material, Model};
-use mpm_core::discretize::{fill, Shape};
+use mpm_core::discretize::{fill, Geometry};
 use mpm_core::solver::observer::ForceHistory;
 use mpm_core::{Kinematics, RigidBody, Settings, Solver, Template, TemplateError};
 use nalgebra::Vector3;
@@ -68,7 +68,7 @@ fn template() -> Template<3> {
     settings.origin = Vector3::repeat(-0.25e-3);
     let mut s = Solver::new(settings);
     let points = fill(
-        &Shape::Cylinder {
+        &Geometry::Cylinder {
             start: Vector3::zeros(),
             end: Vector3::new(0.0, 0.0, HEIGHT),
             radius: RADIUS,

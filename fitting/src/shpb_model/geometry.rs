@@ -13,7 +13,7 @@
 //! node planes.
 
 use super::Cylinder;
-use mpm_core::discretize::{fill, Shape};
+use mpm_core::discretize::{fill, Geometry};
 use mpm_core::{Kinematics, VelocityBc};
 use nalgebra::SVector;
 
@@ -138,7 +138,7 @@ pub fn specimen<const D: usize>(
     let radius = 0.5 * cylinder.diameter;
     let s = cylinder.length / layers as f64;
     if level == ModelLevel::Axisymmetric {
-        let box_ = Shape::Box {
+        let box_ = Geometry::Box {
             min: SVector::zeros(),
             max: SVector::from_fn(|i, _| if i == 0 { radius } else { cylinder.length }),
         };
@@ -154,7 +154,7 @@ pub fn specimen<const D: usize>(
     }
     let s_r = radius / (radius / s).round().max(1.0);
     let dz = cylinder.length / (cylinder.length / s_r).round().max(1.0);
-    let cylinder_shape = Shape::Cylinder {
+    let cylinder_shape = Geometry::Cylinder {
         start: SVector::zeros(),
         end: bar_axis::<D>() * cylinder.length,
         radius,

@@ -5,7 +5,7 @@
 use super::check::Check;
 use super::spec::{BodySpec, SceneFile, ShapeSpec};
 use super::SceneError;
-use crate::discretize::{fill, Shape};
+use crate::discretize::{fill, Geometry};
 use crate::kinematics::Kinematics;
 use crate::mesh::{self, MeshPoint};
 use crate::shape::ShapeFunction;
@@ -18,12 +18,16 @@ use std::path::Path;
 use std::sync::Arc;
 
 /// The shape of body `b` (field `field`) checked against the scene's dimension.
-fn shape<const D: usize>(b: &BodySpec, field: &str, check: &Check) -> Result<Shape<D>, SceneError> {
+fn shape<const D: usize>(
+    b: &BodySpec,
+    field: &str,
+    check: &Check,
+) -> Result<Geometry<D>, SceneError> {
     let sf = format!("{field}.shape");
     let shape = match &b.shape {
         ShapeSpec::Box { min, max } => {
             let (min, max) = check.corners::<D>(&sf, min, max)?;
-            Shape::Box { min, max }
+            Geometry::Box { min, max }
         }
         ShapeSpec::Disk { center, radius } | ShapeSpec::Sphere { center, radius } => {
             let want = if matches!(b.shape, ShapeSpec::Disk { .. }) {
@@ -34,7 +38,7 @@ fn shape<const D: usize>(b: &BodySpec, field: &str, check: &Check) -> Result<Sha
             if want != D {
                 return Err(check.err(format!("{sf}.type"), format!("needs a {want}D scene")));
             }
-            Shape::Ball {
+            Geometry::Ball {
                 center: check.vector(&format!("{sf}.center"), center)?,
                 radius: check.positive(&format!("{sf}.radius"), *radius)?,
             }
@@ -46,7 +50,7 @@ fn shape<const D: usize>(b: &BodySpec, field: &str, check: &Check) -> Result<Sha
                     "cylinder needs a 3d scene (use a box in (r, z) for an axisymmetric one)",
                 ));
             }
-            Shape::Cylinder {
+            Geometry::Cylinder {
                 start: check.vector(&format!("{sf}.start"), start)?,
                 end: check.vector(&format!("{sf}.end"), end)?,
                 radius: check.positive(&format!("{sf}.radius"), *radius)?,
@@ -61,7 +65,7 @@ fn shape<const D: usize>(b: &BodySpec, field: &str, check: &Check) -> Result<Sha
                 .enumerate()
                 .map(|(i, v)| check.vector::<D>(&format!("{sf}.vertices[{i}]"), v))
                 .collect::<Result<_, _>>()?;
-            Shape::Polygon { vertices }
+            Geometry::Polygon { vertices }
         }
         ShapeSpec::Mesh { .. } => unreachable!("mesh bodies are read by `mesh_points`"),
     };

@@ -1,9 +1,9 @@
-//! Preparing a run: Δt from the CFL estimate and spring stability (module `timestep`), the
+//! Preparing a run: Δt from the CFL estimate and spring stability (module `solver::time_step`), the
 //! node mass cutoff, scratch arrays, the watchdog and the initial energy.
 
+use super::time_step::{self, TimeStep};
 use super::{Energies, Solver};
 use crate::shape::{Hex, ShapeFunction};
-use crate::timestep::{self, TimeStep};
 use crate::watchdog::Watchdog;
 use nalgebra::SVector;
 
@@ -28,16 +28,14 @@ impl<const D: usize> Solver<D> {
             .chain(self.conditions.iter().map(|c| c.stiffness()))
             .fold(0.0, f64::max);
         let spring = (stiffest > 0.0).then_some((stiffest, lightest));
-        let ts = timestep::choose(
+        let ts = time_step::choose(
             self.grid.min_spacing(),
             speed,
             spring,
             self.settings.safety,
             self.settings.dt,
         );
-        self.dt = ts.dt;
-        let stable = timestep::node_mass_cutoff(self.grid.min_spacing(), speed, ts.dt);
-        self.mass_cutoff = self.settings.mass_cutoff.max(stable);
+        self.set_time_step(ts.dt, speed);
         self.scratch.force = vec![SVector::zeros(); n];
         self.scratch.grid_velocity = vec![SVector::zeros(); n];
         self.scratch.work = vec![0.0; n];

@@ -20,12 +20,12 @@ mod scatter;
 mod scheme;
 mod settings;
 mod surface_loads;
-mod time_step;
+pub mod time_step;
 
 pub use energies::Energies;
 pub use scheme::{unmet_reads, Data, Scheme, Stage};
 pub use settings::Settings;
-pub use time_step::TimeStepChange;
+pub use time_step::{TimeStep, TimeStepChange};
 
 use crate::boundary::{PointCondition, VelocityBc};
 use crate::contact::ContactState;
@@ -110,7 +110,8 @@ pub struct Solver<const D: usize> {
     watchdog: Option<Watchdog<D>>,
     /// Nodes lighter than this fraction of the heaviest point that reaches them are not
     /// accelerated (they keep v = p/m and a = 0): the larger of `Settings::mass_cutoff`
-    /// and the stability limit (c Δt / 2h)² of `timestep::node_mass_cutoff`.
+    /// and the stability limit (c Δt / 2h)² of `time_step::node_mass_cutoff`, set with Δt
+    /// (`set_time_step`, the one place Δt changes).
     mass_cutoff: f64,
     scratch: Scratch<D>,
 }
@@ -153,8 +154,7 @@ impl<const D: usize> Solver<D> {
         let block = self.blocks.len();
         let start = self.particles.len();
         for (x, v) in points {
-            self.particles
-                .push(*x, velocity, *v, material.density(), block as u32);
+            self.particles.push(*x, velocity, *v, material.density());
         }
         let state = vec![material.initial_state(); points.len()];
         self.blocks.push(MaterialBlock {
@@ -165,6 +165,18 @@ impl<const D: usize> Solver<D> {
             shape_function: None,
         });
         block
+    }
+
+    /// Make block `block` of `material`: its history reset to the material's initial
+    /// state, its points' masses m = ρ V0 with the material's density.
+    pub fn set_material(&mut self, block: usize, material: Arc<dyn Material>) {
+        let b = &mut self.blocks[block];
+        b.state = vec![material.initial_state(); b.range.len()];
+        let rho = material.density();
+        for p in b.range.clone() {
+            self.particles.mass[p] = self.particles.volume0[p] * rho;
+        }
+        b.material = material;
     }
 
     /// The shape functions of block `block`: its own, or the scene's.
@@ -332,7 +344,7 @@ pub enum RunError {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::discretize::{fill, Shape};
+    use crate::discretize::{fill, Geometry};
     use crate::kinematics::Kinematics;
     use materials::NeoHooke;
     use nalgebra::Matrix3;
@@ -347,7 +359,7 @@ mod tests {
         settings.damping = 1.0;
         let mut s = Solver::new(settings);
         let cube = fill(
-            &Shape::Box {
+            &Geometry::Box {
                 min: Vector3::new(0.0, 0.0, 0.02),
                 max: Vector3::repeat(1.0),
             },
@@ -393,7 +405,7 @@ mod tests {
         let h = 0.01;
         let mut s = Solver::new(Settings::<2>::new(Kinematics::PlaneStrain, h));
         let block = fill(
-            &Shape::Box {
+            &Geometry::Box {
                 min: nalgebra::Vector2::zeros(),
                 max: nalgebra::Vector2::new(0.1, 0.1),
             },
@@ -439,7 +451,7 @@ mod tests {
         let h = 0.1;
         let mut s = Solver::new(Settings::<2>::new(Kinematics::PlaneStrain, h));
         let block = fill(
-            &Shape::Box {
+            &Geometry::Box {
                 min: nalgebra::Vector2::zeros(),
                 max: nalgebra::Vector2::repeat(0.4),
             },

@@ -36,7 +36,7 @@ pub struct Settings<const D: usize> {
     /// accelerated: their f/m would be huge (the force of a point near the far side of a
     /// cell does not shrink with its shape function value), which makes the USL unstable
     /// when a point nears a cell face. `initialize` raises it to the stability limit
-    /// (c Δt / 2h)² of `timestep::node_mass_cutoff` when that is larger. The fraction is
+    /// (c Δt / 2h)² of `time_step::node_mass_cutoff` when that is larger. The fraction is
     /// of the node's own points, not of the lightest point of the model: axisymmetric
     /// points weigh 2π r A ρ, so near the rim they are heavier than on the axis by R/r,
     /// and a cutoff from the lightest point let rim nodes with 1/100 of their points'

@@ -19,7 +19,7 @@ use super::bench_small::{alone, concurrent, median, SmallRun};
 use anyhow::Result;
 use materials::signal::TimeSignal;
 use materials::Material;
-use mpm_core::discretize::{fill, Shape};
+use mpm_core::discretize::{fill, Geometry};
 use mpm_core::shape::{Reach, ShapeFunction};
 use mpm_core::{Kinematics, RigidBody, Scheme, Settings, Solver, StageTimes};
 use nalgebra::{SVector, Vector3};
@@ -106,7 +106,7 @@ fn settings(spacing: f64, scheme: &str, kernel: ShapeFunction) -> Settings<3> {
 fn block(scheme: &str, kernel: ShapeFunction) -> Solver<3> {
     let mut s = Solver::new(settings(0.01, scheme, kernel));
     let points = fill(
-        &Shape::Box {
+        &Geometry::Box {
             min: Vector3::zeros(),
             max: Vector3::repeat(0.2),
         },
@@ -135,7 +135,7 @@ fn compression(material: Arc<dyn Material>, scheme: &str, kernel: ShapeFunction)
     let (r, h) = (0.005, 0.01);
     let rate = 20.0 / h;
     let mut s = Solver::new(settings(0.000_461, scheme, kernel));
-    let shape = Shape::Cylinder {
+    let shape = Geometry::Cylinder {
         start: Vector3::zeros(),
         end: Vector3::new(0.0, 0.0, h),
         radius: r,

@@ -60,7 +60,7 @@ pub fn run(args: Args) -> Result<()> {
     bar.set_style(ProgressStyle::with_template(
         "{bar:40} {percent:>3}% t = {msg} [{elapsed} < {eta}]",
     )?);
-    let warn = |ts: &mpm_core::timestep::TimeStep| {
+    let warn = |ts: &mpm_core::TimeStep| {
         if let Some(risk) = ts.risk() {
             bar.suspend(|| eprintln!("warning: {risk}"));
         }

@@ -56,7 +56,7 @@
 use crate::verify::case_result::CaseResult;
 use materials::driver::{self, Control, LoadPath, Ramp, Temperature};
 use materials::{load_material, AnyModel};
-use mpm_core::discretize::{fill, Shape};
+use mpm_core::discretize::{fill, Geometry};
 use mpm_core::shape::ShapeFunction;
 use mpm_core::{Kinematics, NodeSet, Scheme, Settings, SimulationError, Solver, VelocityBc};
 use nalgebra::Vector2;
@@ -150,7 +150,7 @@ fn column(model: &AnyModel<f64>, kernel: ShapeFunction) -> Solver<2> {
     settings.dt = Some(DT);
     let mut solver = Solver::new(settings);
     let points = fill(
-        &Shape::Box {
+        &Geometry::Box {
             min: Vector2::zeros(),
             max: Vector2::new(WIDTH, HEIGHT),
         },

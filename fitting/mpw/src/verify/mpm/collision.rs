@@ -7,7 +7,7 @@
 //! total momentum drift, energy error at the end.
 
 use materials::NeoHooke;
-use mpm_core::discretize::{fill, Shape};
+use mpm_core::discretize::{fill, Geometry};
 use mpm_core::kinematics::Kinematics;
 use mpm_core::solver::{Settings, Solver};
 use nalgebra::SVector;
@@ -45,7 +45,7 @@ pub fn collide<const D: usize>(spacing: f64) -> CollisionResult {
         "lower",
         material.clone(),
         &fill(
-            &Shape::Ball {
+            &Geometry::Ball {
                 center: c1,
                 radius: 0.2,
             },
@@ -58,7 +58,7 @@ pub fn collide<const D: usize>(spacing: f64) -> CollisionResult {
         "upper",
         material,
         &fill(
-            &Shape::Ball {
+            &Geometry::Ball {
                 center: c2,
                 radius: 0.2,
             },

@@ -46,7 +46,7 @@ use crate::verify::case_result::CaseResult;
 use materials::signal::TimeSignal;
 use materials::NeoHooke;
 use mpm_core::boundary::{NodeSet, VelocityBc};
-use mpm_core::discretize::{fill, Shape};
+use mpm_core::discretize::{fill, Geometry};
 use mpm_core::kinematics::Kinematics;
 use mpm_core::mesh;
 use mpm_core::shape::ShapeFunction;
@@ -139,7 +139,7 @@ fn material() -> Arc<NeoHooke> {
 /// The membrane as a solver ready to run: `n` points per cell along each axis.
 pub fn membrane(n: usize) -> Solver<2> {
     let mut s = Solver::new(settings());
-    let shape = Shape::Polygon {
+    let shape = Geometry::Polygon {
         vertices: vec![
             Vector2::new(0.0, 0.0),
             Vector2::new(0.048, 0.044),

@@ -28,7 +28,7 @@
 //! thickness]. SI units.
 
 use crate::verify::case_result::CaseResult;
-use mpm_core::discretize::{fill, Shape};
+use mpm_core::discretize::{fill, Geometry};
 use mpm_core::failure::SimulationError;
 use mpm_core::kinematics::Kinematics;
 use mpm_core::parallel::fixed_sum;
@@ -85,7 +85,7 @@ pub fn plastic_impact(
     settings.safety = 0.3;
     let mut solver = Solver::new(settings);
     let target = fill(
-        &Shape::Box {
+        &Geometry::Box {
             min: SVector::<f64, 2>::zeros(),
             max: SVector::<f64, 2>::new(WIDTH, surface),
         },
@@ -101,7 +101,7 @@ pub fn plastic_impact(
     let s = RADIUS * (std::f64::consts::PI / DISK_POINTS as f64).sqrt();
     let center = SVector::<f64, 2>::new(WIDTH / 2.0, surface + RADIUS);
     let disk = fill(
-        &Shape::Ball {
+        &Geometry::Ball {
             center,
             radius: RADIUS,
         },

@@ -18,7 +18,7 @@
 
 use materials::signal::TimeSignal;
 use materials::NeoHooke;
-use mpm_core::discretize::{fill, Shape};
+use mpm_core::discretize::{fill, Geometry};
 use mpm_core::kinematics::Kinematics;
 use mpm_core::rigid::{RigidBody, Rotation};
 use mpm_core::solver::{Scheme, Settings, Solver};
@@ -44,7 +44,7 @@ pub fn libra(penalty: f64, per_edge: usize) -> Result<LibraResult, mpm_core::Sim
     settings.body_force = Vector3::new(0.0, 0.0, -10.0);
     let mut solver = Solver::new(settings);
     let cube = fill(
-        &Shape::Box {
+        &Geometry::Box {
             min: Vector3::zeros(),
             max: Vector3::repeat(1.0),
         },
@@ -114,7 +114,7 @@ pub fn inclined_plate(
     settings.body_force = Vector3::new(0.0, 0.0, -10.0);
     let mut solver = Solver::new(settings);
     let cube = fill(
-        &Shape::Box {
+        &Geometry::Box {
             min: Vector3::new(-0.2, -0.2, 0.0),
             max: Vector3::new(0.3, 0.3, edge),
         },

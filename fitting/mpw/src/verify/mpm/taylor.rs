@@ -25,7 +25,7 @@
 //! github.com/bbanerjee/HighRateExptData, `TaylorData/DAT/CuZerilli.dat`. SI units.
 
 use crate::verify::case_result::CaseResult;
-use mpm_core::discretize::{fill, Shape};
+use mpm_core::discretize::{fill, Geometry};
 use mpm_core::failure::SimulationError;
 use mpm_core::kinematics::Kinematics;
 use mpm_core::results::largest;
@@ -132,7 +132,7 @@ pub fn taylor_bar(
             let mut solver = Solver::new(settings);
             solver.velocity_bcs.push(VelocityBc::axis());
             let points = fill(
-                &Shape::Box {
+                &Geometry::Box {
                     min: SVector::<f64, 2>::new(0.0, 0.0),
                     max: SVector::<f64, 2>::new(RADIUS, LENGTH),
                 },
@@ -158,7 +158,7 @@ pub fn taylor_bar(
             settings.shape_function = kernel;
             let mut solver = Solver::new(settings);
             let points: Vec<_> = fill(
-                &Shape::Cylinder {
+                &Geometry::Cylinder {
                     start: SVector::<f64, 3>::zeros(),
                     end: SVector::<f64, 3>::new(0.0, 0.0, LENGTH),
                     radius: RADIUS,

@@ -10,7 +10,7 @@
 
 use materials::NeoHooke;
 use mpm_core::boundary::{NodeSet, VelocityBc};
-use mpm_core::discretize::{fill, Shape};
+use mpm_core::discretize::{fill, Geometry};
 use mpm_core::kinematics::Kinematics;
 use mpm_core::solver::{Scheme, Settings, Solver};
 use nalgebra::{SVector, Vector2, Vector3};
@@ -108,7 +108,7 @@ pub fn bar(scheme: Scheme, cells: usize) -> BarResult {
     settings.bulk_viscosity = None;
     settings.safety = 0.1;
     let mut s = Solver::new(settings);
-    let shape = Shape::Box {
+    let shape = Geometry::Box {
         min: Vector2::new(0.0, 0.0),
         max: Vector2::new(length, h),
     };
