@@ -12,7 +12,7 @@ use mpw::verify::fit::{jacobian_vs_fd, recovery_cases, steel_945_cases};
 fn default_set_recovers_the_truth() {
     for row in recovery_cases(&VerifyData::repository().default_set()).unwrap() {
         println!("{row}");
-        assert!(row.passed, "{row}");
+        assert_eq!(row.verdict, mpw::verify::row::Verdict::Pass, "{row}");
     }
 }
 
@@ -28,7 +28,7 @@ fn the_945_records_fit_within_five_percent() {
     assert_eq!(rows.len(), 6);
     for row in rows {
         println!("{row}");
-        assert!(row.passed, "{row}");
+        assert_eq!(row.verdict, mpw::verify::row::Verdict::Pass, "{row}");
     }
 }
 

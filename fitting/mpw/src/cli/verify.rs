@@ -8,6 +8,8 @@ use crate::charts::heatmap::HeatMap;
 use crate::charts::{LineChart, Series};
 use crate::verify::data::VerifyData;
 use crate::verify::materials::{self as studies, figure_4_5, iso_error};
+use crate::verify::row::{Row, Verdict};
+use crate::verify::Inputs;
 use anyhow::{bail, Result};
 use std::path::{Path, PathBuf};
 
@@ -35,21 +37,21 @@ pub struct Args {
 }
 
 /// Every row with its numbers in shortest round-trip form.
-fn write_values(path: &Path, cases: &[crate::verify::case_result::CaseResult]) -> Result<()> {
-    let mut text = String::from("case,measured,reference,result\n");
+fn write_values(path: &Path, cases: &[Row]) -> Result<()> {
+    let mut text = String::from("case,measured,reference,result,note\n");
     for c in cases {
-        let result = if c.info {
-            "info"
-        } else if c.passed {
-            "pass"
-        } else {
-            "fail"
+        let result = match c.verdict {
+            Verdict::Info => "info",
+            Verdict::Pass => "pass",
+            Verdict::Fail => "fail",
         };
+        let quoted = |s: &str| format!("\"{}\"", s.replace('"', "\"\""));
         text += &format!(
-            "\"{}\",{:e},{:e},{result}\n",
-            c.name.replace('"', "\"\""),
+            "{},{:e},{:e},{result},{}\n",
+            quoted(&c.name),
             c.measured,
-            c.reference
+            c.reference,
+            quoted(&c.note)
         );
     }
     std::fs::write(path, text).map_err(|e| anyhow::anyhow!("{}: cannot write: {e}", path.display()))
@@ -191,11 +193,11 @@ fn truss_chart(scenes: &Path, out: &Path) -> Result<()> {
 pub fn run(args: Args) -> Result<()> {
     let data = VerifyData::new(&args.data);
     let materials = data.materials();
-    let mut cases = studies::verify_cases(&materials, args.full)?;
-    cases.extend(crate::verify::shpb::verify_cases(&data));
-    cases.extend(crate::verify::fit::verify_cases(&data));
-    cases.extend(crate::verify::mpm::verify_cases(&data, args.full));
-    cases.extend(crate::verify::shpb_model::verify_cases());
+    let inputs = Inputs {
+        data: &data,
+        full: args.full,
+    };
+    let cases = crate::verify::table(&inputs)?;
     println!(
         "{:<60} {:>14} {:>14} {:>12} result",
         "case", "measured", "reference", "tolerance"
@@ -214,8 +216,8 @@ pub fn run(args: Args) -> Result<()> {
         truss_chart(&data.scenes(), dir)?;
         println!("charts written to {}", dir.display());
     }
-    let failed = cases.iter().filter(|c| !c.passed).count();
-    let info = cases.iter().filter(|c| c.info).count();
+    let count = |v: Verdict| cases.iter().filter(|c| c.verdict == v).count();
+    let (failed, info) = (count(Verdict::Fail), count(Verdict::Info));
     println!(
         "{} cases, {} passed, {} failed, {} reported (info)",
         cases.len(),

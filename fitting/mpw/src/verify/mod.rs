@@ -1,10 +1,52 @@
 //! The verification catalogue of `mpw verify`: every case the project checks against an
-//! analytic solution, a published value or an independent implementation, by library.
+//! analytic solution, a published value, an independent implementation or a
+//! finite-difference check, one `Row` each, asserted (pass or fail) or reported (info).
+//! Each part of the catalogue is one function from the same `Inputs` to its rows,
+//! registered once in `CATALOGUE`; `table` runs them in that order.
 
-pub mod case_result;
 pub mod data;
 pub mod fit;
 pub mod materials;
 pub mod mpm;
+pub mod row;
 pub mod shpb;
 pub mod shpb_model;
+
+use data::VerifyData;
+use row::Row;
+
+/// What every part of the catalogue is given.
+pub struct Inputs<'a> {
+    /// The reference data folder (`--data`).
+    pub data: &'a VerifyData,
+    /// The thesis sizes where a part has smaller default ones (`--full`).
+    pub full: bool,
+}
+
+/// One part of the catalogue: its rows from the inputs.
+pub type Part = fn(&Inputs) -> anyhow::Result<Vec<Row>>;
+
+/// The catalogue, part by part, in table order.
+pub const CATALOGUE: [(&str, Part); 5] = [
+    ("materials", materials::rows),
+    ("shpb", shpb::rows),
+    ("fit", fit::rows),
+    ("mpm", mpm::rows),
+    ("shpb-model", shpb_model::rows),
+];
+
+/// Every row of the catalogue; a part that cannot run, or two rows of one name (two
+/// builds' tables are compared by name), is an error.
+pub fn table(inputs: &Inputs) -> anyhow::Result<Vec<Row>> {
+    let mut rows: Vec<Row> = vec![];
+    for (name, part) in CATALOGUE {
+        let part_rows = part(inputs).map_err(|e| e.context(format!("verification part {name}")))?;
+        rows.extend(part_rows);
+    }
+    let mut names: Vec<&str> = rows.iter().map(|r| r.name.as_str()).collect();
+    names.sort_unstable();
+    if let Some(twice) = names.windows(2).find(|w| w[0] == w[1]) {
+        anyhow::bail!("two verification rows are named `{}`", twice[0]);
+    }
+    Ok(rows)
+}

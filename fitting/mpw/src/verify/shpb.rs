@@ -2,8 +2,9 @@
 //! known specimen curve, and the agreement of paired real tests (945 steel, pairs 1-2,
 //! 3-4, 5-6 at similar impact levels) when the shared data folder is present.
 
-use crate::verify::case_result::CaseResult;
 use crate::verify::data::VerifyData;
+use crate::verify::row::Row;
+use crate::verify::Inputs;
 use fitting::experiment::ShpbExperiment;
 use fitting::shpb::round_trip::{
     record_with_late_gauges, synthetic_round_trip, synthetic_round_trip_with,
@@ -50,15 +51,15 @@ fn steel_945_before_after(
 /// The six 945 records aligned by force balance against geometrically: the median R
 /// must fall on every record; the largest force-balance median R is reported beside the
 /// source tool's 0.09 (its own force-balance alignment, 0.05-0.09 on these records).
-fn steel_945_alignment_cases(files: &[std::path::PathBuf]) -> Vec<CaseResult> {
+fn steel_945_alignment_cases(files: &[std::path::PathBuf]) -> Vec<Row> {
     let name = "shpb/steel945: force balance lowers the median R of every record";
     let Some(q) = steel_945_before_after(files, Processing::default(), FORCE_BALANCE) else {
-        return vec![CaseResult::holds(name, false)];
+        return vec![Row::holds(name, false)];
     };
     let worst = q.iter().map(|r| r.1.median_r).fold(0.0, f64::max);
     vec![
-        CaseResult::holds(name, q.iter().all(|(g, b)| b.median_r < g.median_r)),
-        CaseResult::info(
+        Row::holds(name, q.iter().all(|(g, b)| b.median_r < g.median_r)),
+        Row::info(
             "shpb/steel945: largest force-balance median R (source tool: 0.09)",
             worst,
             0.09,
@@ -69,30 +70,30 @@ fn steel_945_alignment_cases(files: &[std::path::PathBuf]) -> Vec<CaseResult> {
 /// The six 945 records with and without the dispersion correction (geometric
 /// alignment, ν 0.29): the F1 oscillation and the median R must fall on every record;
 /// the largest F1 oscillation before and after is reported (measured 31.7 % and 11.2 %).
-fn steel_945_dispersion_cases(files: &[std::path::PathBuf]) -> Vec<CaseResult> {
+fn steel_945_dispersion_cases(files: &[std::path::PathBuf]) -> Vec<Row> {
     let corrected = Processing {
         dispersion: true,
         ..Processing::default()
     };
     let name = "shpb/steel945: dispersion correction lowers the F1 oscillation of every record";
     let Some(q) = steel_945_before_after(files, Processing::default(), corrected) else {
-        return vec![CaseResult::holds(name, false)];
+        return vec![Row::holds(name, false)];
     };
     let largest = |f: &dyn Fn(&(Quality, Quality)) -> f64| q.iter().map(f).fold(0.0, f64::max);
     vec![
-        CaseResult::holds(
+        Row::holds(
             name,
             q.iter().all(|(b, a)| a.f1_oscillation < b.f1_oscillation),
         ),
-        CaseResult::holds(
+        Row::holds(
             "shpb/steel945: dispersion correction lowers the median R of every record",
             q.iter().all(|(b, a)| a.median_r < b.median_r),
         ),
-        CaseResult::reported(
+        Row::reported(
             "shpb/steel945: largest F1 oscillation, uncorrected",
             largest(&|r| r.0.f1_oscillation),
         ),
-        CaseResult::reported(
+        Row::reported(
             "shpb/steel945: largest F1 oscillation, dispersion corrected",
             largest(&|r| r.1.f1_oscillation),
         ),
@@ -106,7 +107,7 @@ pub const WORKBOOK_RATE_TEST_05: f64 = 1876.0;
 /// An inverted synthetic record is refused (never processed with the reflected pulse
 /// taken for the incident one), and a record whose gauges sit at calibrated delays 2 %
 /// longer than distance / c0 comes back within 1 % when the delays are stated.
-fn polarity_and_delay_cases() -> Vec<CaseResult> {
+fn polarity_and_delay_cases() -> Vec<Row> {
     let synthetic = SyntheticShpb::generate(&SyntheticSetup::steel_945_like(5));
     let mut inverted = synthetic.experiment;
     for v in [&mut inverted.incident, &mut inverted.transmitted] {
@@ -120,28 +121,28 @@ fn polarity_and_delay_cases() -> Vec<CaseResult> {
     setup.bar.incident_delay_calibrated_s = Some(1.02 * setup.bar.incident_delay_s());
     setup.bar.transmitted_delay_calibrated_s = Some(1.02 * setup.bar.transmitted_delay_s());
     let delayed = match synthetic_round_trip(&setup) {
-        Ok(r) => CaseResult::at_most(
+        Ok(r) => Row::at_most(
             "shpb/calibrated delays: stress 3-wave (max rel)",
             r.stress_error_3wave,
             0.01,
         ),
         Err(e) => {
             eprintln!("shpb/calibrated delays: {e}");
-            CaseResult::holds("shpb/calibrated delays: round trip runs", false)
+            Row::holds("shpb/calibrated delays: round trip runs", false)
         }
     };
     let mut rows = vec![
-        CaseResult::holds("shpb/polarity: inverted synthetic record refused", refused),
+        Row::holds("shpb/polarity: inverted synthetic record refused", refused),
         delayed,
     ];
     rows.extend(alignment_cases());
     let (dispersed, recovered) = fitting::shpb::dispersion::round_trip();
-    rows.push(CaseResult::info(
+    rows.push(Row::info(
         "shpb/dispersion: pulse after 0.75 m with dispersion, max change (rel)",
         dispersed,
         0.0,
     ));
-    rows.push(CaseResult::at_most(
+    rows.push(Row::at_most(
         "shpb/dispersion: corrected back, max error (rel)",
         recovered,
         1e-3,
@@ -153,7 +154,7 @@ fn polarity_and_delay_cases() -> Vec<CaseResult> {
 /// A synthetic record whose pulses disperse between gauges and faces
 /// (`SyntheticSetup::dispersed`), processed with the correction: stresses within the
 /// 1 % of the non-dispersed round trip; the uncorrected errors are reported.
-fn dispersed_record_cases() -> Vec<CaseResult> {
+fn dispersed_record_cases() -> Vec<Row> {
     let mut setup = SyntheticSetup::steel_945_like(3);
     setup.dispersed = true;
     let corrected = Processing {
@@ -165,21 +166,21 @@ fn dispersed_record_cases() -> Vec<CaseResult> {
         synthetic_round_trip(&setup),
     ) {
         (Ok(c), Ok(u)) => vec![
-            CaseResult::at_most(
+            Row::at_most(
                 "shpb/dispersion: dispersed record, corrected, stress 3-wave (max rel)",
                 c.stress_error_3wave,
                 0.01,
             ),
-            CaseResult::at_most(
+            Row::at_most(
                 "shpb/dispersion: dispersed record, corrected, stress 1-wave (max rel)",
                 c.stress_error_1wave,
                 0.01,
             ),
-            CaseResult::reported(
+            Row::reported(
                 "shpb/dispersion: dispersed record, corrected, stress 2-wave (max rel)",
                 c.stress_error_2wave,
             ),
-            CaseResult::reported(
+            Row::reported(
                 "shpb/dispersion: dispersed record, uncorrected, stress 3-wave (max rel)",
                 u.stress_error_3wave,
             ),
@@ -188,7 +189,7 @@ fn dispersed_record_cases() -> Vec<CaseResult> {
             for e in [c.err(), u.err()].into_iter().flatten() {
                 eprintln!("shpb/dispersion: {e}");
             }
-            vec![CaseResult::holds(
+            vec![Row::holds(
                 "shpb/dispersion: dispersed record processed",
                 false,
             )]
@@ -198,17 +199,17 @@ fn dispersed_record_cases() -> Vec<CaseResult> {
 
 /// Force-balance alignment of `record_with_late_gauges`, asserted within 0.05 µs (1.6
 /// samples of 32 ns).
-fn alignment_cases() -> Vec<CaseResult> {
+fn alignment_cases() -> Vec<Row> {
     let (exp, needed) = record_with_late_gauges(10);
     match analyze_with(&exp, FORCE_BALANCE) {
         Ok(a) => vec![
-            CaseResult::absolute(
+            Row::absolute(
                 "shpb/alignment: force balance, reflected shift [us]",
                 a.shifts.reflected_s * 1e6,
                 needed.reflected_s * 1e6,
                 0.05,
             ),
-            CaseResult::absolute(
+            Row::absolute(
                 "shpb/alignment: force balance, transmitted shift [us]",
                 a.shifts.transmitted_s * 1e6,
                 needed.transmitted_s * 1e6,
@@ -217,7 +218,7 @@ fn alignment_cases() -> Vec<CaseResult> {
         ],
         Err(e) => {
             eprintln!("shpb/alignment: {e}");
-            vec![CaseResult::holds(
+            vec![Row::holds(
                 "shpb/alignment: synthetic record processed",
                 false,
             )]
@@ -226,31 +227,36 @@ fn alignment_cases() -> Vec<CaseResult> {
 }
 
 /// Rows of `mpw verify` for the SHPB processing.
-pub fn verify_cases(data: &VerifyData) -> Vec<CaseResult> {
+/// Every SHPB processing row of `mpw verify`.
+pub fn rows(inputs: &Inputs) -> anyhow::Result<Vec<Row>> {
+    Ok(cases(inputs.data))
+}
+
+fn cases(data: &VerifyData) -> Vec<Row> {
     let mut cases = Vec::new();
     match synthetic_round_trip(&SyntheticSetup::steel_945_like(1)) {
         Ok(r) => {
-            cases.push(CaseResult::at_most(
+            cases.push(Row::at_most(
                 "shpb/synthetic stress 3-wave (max rel)",
                 r.stress_error_3wave,
                 0.01,
             ));
-            cases.push(CaseResult::at_most(
+            cases.push(Row::at_most(
                 "shpb/synthetic stress 1-wave (max rel)",
                 r.stress_error_1wave,
                 0.01,
             ));
-            cases.push(CaseResult::at_most(
+            cases.push(Row::at_most(
                 "shpb/synthetic stress 2-wave (max rel)",
                 r.stress_error_2wave,
                 0.01,
             ));
-            cases.push(CaseResult::at_most(
+            cases.push(Row::at_most(
                 "shpb/synthetic strain (max rel)",
                 r.strain_error,
                 0.01,
             ));
-            cases.push(CaseResult::relative(
+            cases.push(Row::relative(
                 "shpb/synthetic plateau strain rate [1/s]",
                 r.analysis.plateau.strain_rate_3wave_per_s,
                 r.exact_plateau_rate_per_s,
@@ -259,7 +265,7 @@ pub fn verify_cases(data: &VerifyData) -> Vec<CaseResult> {
         }
         Err(e) => {
             eprintln!("shpb/synthetic: {e}");
-            cases.push(CaseResult::holds("shpb/synthetic round trip runs", false));
+            cases.push(Row::holds("shpb/synthetic round trip runs", false));
         }
     }
     cases.extend(polarity_and_delay_cases());
@@ -282,21 +288,21 @@ pub fn verify_cases(data: &VerifyData) -> Vec<CaseResult> {
     // The data's source tool's hand-processed workbook for test 05 reads a plateau rate of
     // 1876 1/s; its plateau bounds are picked by hand, ours by rule: 2 %.
     cases.push(match rates[4] {
-        Some(rate) => CaseResult::relative(
+        Some(rate) => Row::relative(
             "shpb/steel945 test 05 plateau rate vs the source's workbook [1/s]",
             rate,
             WORKBOOK_RATE_TEST_05,
             0.02,
         ),
-        None => CaseResult::holds("shpb/steel945 test 05 processed", false),
+        None => Row::holds("shpb/steel945 test 05 processed", false),
     });
     cases.extend(steel_945_alignment_cases(&files));
     cases.extend(steel_945_dispersion_cases(&files));
     for pair in [(0, 1), (2, 3), (4, 5)] {
         let name = format!("shpb/steel945 rate test {} vs {}", pair.1 + 1, pair.0 + 1);
         cases.push(match (rates[pair.0], rates[pair.1]) {
-            (Some(a), Some(b)) => CaseResult::relative(name, b, a, 0.10),
-            _ => CaseResult::holds(name, false),
+            (Some(a), Some(b)) => Row::relative(name, b, a, 0.10),
+            _ => Row::holds(name, false),
         });
     }
     cases

@@ -15,7 +15,8 @@
 //! level, and at the 3D quarter, whose symmetry planes are checked against the full 3D
 //! cylinder.
 
-use crate::verify::case_result::CaseResult;
+use crate::verify::row::Row;
+use crate::verify::Inputs;
 use fitting::shpb_model::{
     Bars, Cylinder, Drive, FaceSignals, ModelLevel, ModelSettings, ShpbModel,
 };
@@ -202,7 +203,12 @@ pub fn elastic_compression(level: ModelLevel, layers: usize) -> anyhow::Result<(
 
 /// Rows of `mpw verify`: the matched and the aluminium specimen at `LAYERS`; the elastic
 /// compression against the series springs.
-pub fn verify_cases() -> Vec<CaseResult> {
+/// Every SHPB-model row of `mpw verify`.
+pub fn rows(_inputs: &Inputs) -> anyhow::Result<Vec<Row>> {
+    Ok(cases())
+}
+
+fn cases() -> Vec<Row> {
     let mut out = Vec::new();
     for layers in [10, 20, 40] {
         let name = format!(
@@ -212,8 +218,8 @@ pub fn verify_cases() -> Vec<CaseResult> {
             match elastic_compression(ModelLevel::Axisymmetric, layers) {
                 // tolerance: a fifth of the end-cell error this row guards against (2.7 % at
                 // n = 40 with stiff contact), well above the Neo-Hooke nonlinearity (4e-4)
-                Ok((ratio, series)) => CaseResult::relative(name, ratio, series, 5e-3),
-                Err(e) => CaseResult::holds(format!("{name}: {e:#}"), false),
+                Ok((ratio, series)) => Row::relative(name, ratio, series, 5e-3),
+                Err(e) => Row::holds(format!("{name}: {e:#}"), false),
             },
         );
     }
@@ -231,7 +237,7 @@ pub fn verify_cases() -> Vec<CaseResult> {
         let runs = match runs {
             Ok(r) => r,
             Err(e) => {
-                out.push(CaseResult::holds(
+                out.push(Row::holds(
                     format!("shpb-model/impedance/{name}: {e:#}"),
                     false,
                 ));
@@ -246,8 +252,8 @@ pub fn verify_cases() -> Vec<CaseResult> {
             for (what, measured, theory) in r.rows() {
                 let name = format!("{prefix} {what}");
                 out.push(match layers == LAYERS[LAYERS.len() - 1] {
-                    true => CaseResult::absolute(name, measured, theory, r.theory_error),
-                    false => CaseResult::info(name, measured, theory),
+                    true => Row::absolute(name, measured, theory, r.theory_error),
+                    false => Row::info(name, measured, theory),
                 });
             }
         }
@@ -255,13 +261,17 @@ pub fn verify_cases() -> Vec<CaseResult> {
         // the noise level, 1e-4, from the coarsest level on)
         let error = |r: &Impedance| (r.transmission - r.transmission_theory).abs();
         let errors: Vec<f64> = runs.iter().map(error).collect();
-        out.push(CaseResult::holds(
-            format!(
-                "shpb-model/impedance/{name}: transmission error falls with refinement ({:.1e}, {:.1e}, {:.1e})",
-                errors[0], errors[1], errors[2]
-            ),
-            errors.windows(2).all(|w| w[1] < w[0]),
-        ));
+        let note = format!(
+            "errors {:.1e}, {:.1e}, {:.1e}",
+            errors[0], errors[1], errors[2]
+        );
+        out.push(
+            Row::holds(
+                format!("shpb-model/impedance/{name}: transmission error falls with refinement"),
+                errors.windows(2).all(|w| w[1] < w[0]),
+            )
+            .with_note(note),
+        );
     }
     out.extend(solid_level_cases());
     // the domain kernels on the matched specimen at the finest level; uGIMP's
@@ -282,18 +292,13 @@ pub fn verify_cases() -> Vec<CaseResult> {
                 (ModelLevel::Axisymmetric, finest),
                 kernel,
             ) {
-                Ok(r) if kernel == ShapeFunction::UGimp => CaseResult::info(
+                Ok(r) if kernel == ShapeFunction::UGimp => Row::info(
                     format!("{name} (gap)"),
                     r.transmission,
                     r.transmission_theory,
                 ),
-                Ok(r) => CaseResult::absolute(
-                    name,
-                    r.transmission,
-                    r.transmission_theory,
-                    r.theory_error,
-                ),
-                Err(e) => CaseResult::holds(format!("{name}: {e:#}"), false),
+                Ok(r) => Row::absolute(name, r.transmission, r.transmission_theory, r.theory_error),
+                Err(e) => Row::holds(format!("{name}: {e:#}"), false),
             },
         );
     }
@@ -303,7 +308,7 @@ pub fn verify_cases() -> Vec<CaseResult> {
 /// The 3D levels: the quarter with its two symmetry planes is the full cylinder to
 /// round-off, takes the series springs of the quasi-static compression, and couples to
 /// the bars as the axisymmetric level does (matched specimen, finest level).
-fn solid_level_cases() -> Vec<CaseResult> {
+fn solid_level_cases() -> Vec<Row> {
     let mut out = Vec::new();
     let name = "shpb-model/elastic compression n10 mpm-3d-quarter";
     let (quarter, full) = (
@@ -312,21 +317,21 @@ fn solid_level_cases() -> Vec<CaseResult> {
     );
     match (quarter, full) {
         (Ok((quarter, series)), Ok((full, _))) => {
-            out.push(CaseResult::relative(
+            out.push(Row::relative(
                 format!("{name}: F2 / (E A eps) vs specimen and contact springs in series"),
                 quarter,
                 series,
                 5e-3,
             ));
             // round-off of two runs that sum the same forces in another order
-            out.push(CaseResult::relative(
+            out.push(Row::relative(
                 format!("{name}: F2 of the quarter x 4 vs the full 3D cylinder"),
                 quarter,
                 full,
                 1e-9,
             ));
         }
-        (Err(e), _) | (_, Err(e)) => out.push(CaseResult::holds(format!("{name}: {e:#}"), false)),
+        (Err(e), _) | (_, Err(e)) => out.push(Row::holds(format!("{name}: {e:#}"), false)),
     }
     let finest = LAYERS[LAYERS.len() - 1];
     let name = format!("shpb-model/impedance/matched n{finest} mpm-3d-quarter");
@@ -335,10 +340,10 @@ fn solid_level_cases() -> Vec<CaseResult> {
         Ok(r) => {
             for (what, measured, theory) in r.rows() {
                 let row = format!("{name} {what}");
-                out.push(CaseResult::absolute(row, measured, theory, r.theory_error));
+                out.push(Row::absolute(row, measured, theory, r.theory_error));
             }
         }
-        Err(e) => out.push(CaseResult::holds(format!("{name}: {e:#}"), false)),
+        Err(e) => out.push(Row::holds(format!("{name}: {e:#}"), false)),
     }
     out
 }

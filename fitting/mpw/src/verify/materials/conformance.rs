@@ -1,47 +1,48 @@
 //! The conformance checks of every material model (`materials::conformance`, DESIGN 4.4)
 //! as rows of the `mpw verify` table, with the library's bounds.
 
-use crate::verify::case_result::CaseResult;
+use crate::verify::row::Row;
 use materials::conformance::{self as c, BOUND_DERIVATIVE};
 use materials::material::Model;
 use materials::neo_hooke::NeoHooke;
 use materials::plasticity::ElastoPlastic;
 
 /// The checks every model passes.
-pub fn check_model<M: Model<f64>>(name: &str, m: &M) -> Vec<CaseResult> {
+pub fn check_model<M: Model<f64>>(name: &str, m: &M) -> Vec<Row> {
     let r = c::model_measures(m);
     vec![
-        CaseResult::at_most(
+        Row::at_most(
             format!("{name}: |σ(F=I)| [Pa]"),
             r.stress_at_identity,
             c::BOUND_STRESS_AT_IDENTITY,
         ),
-        CaseResult::at_most(
+        Row::at_most(
             format!("{name}: asymmetry of σ"),
             r.asymmetry,
             c::BOUND_ASYMMETRY,
         ),
-        CaseResult::at_most(
+        Row::at_most(
             format!("{name}: objectivity error"),
             r.objectivity,
             c::BOUND_OBJECTIVITY,
         ),
-        CaseResult::at_most(
+        Row::at_most(
             format!("{name}: AD tangent vs FD"),
             r.tangent,
             BOUND_DERIVATIVE,
         ),
-        CaseResult::at_most(
-            format!("{name}: dσ/dp vs FD (worst: {})", r.sensitivity_worst),
+        Row::at_most(
+            format!("{name}: dσ/dp vs FD"),
             r.sensitivity,
             BOUND_DERIVATIVE,
-        ),
+        )
+        .with_note(format!("worst: {}", r.sensitivity_worst)),
     ]
 }
 
 /// Neo-Hooke: σ = ∂ψ/∂F Fᵀ / J with the gradient of ψ by AD.
-pub fn check_energy(m: &NeoHooke) -> CaseResult {
-    CaseResult::at_most(
+pub fn check_energy(m: &NeoHooke) -> Row {
+    Row::at_most(
         "neo-hooke: σ vs ∂ψ/∂F Fᵀ/J",
         c::energy_consistency(m),
         c::BOUND_ENERGY,
@@ -50,15 +51,16 @@ pub fn check_energy(m: &NeoHooke) -> CaseResult {
 
 /// Plastic models: det Fp = 1 along a random plastic path, and the elastic unloading
 /// slope after 5 % uniaxial strain equals the initial loading slope.
-pub fn check_plastic(name: &str, m: &ElastoPlastic) -> Vec<CaseResult> {
+pub fn check_plastic(name: &str, m: &ElastoPlastic) -> Vec<Row> {
     let r = c::plastic_measures(m);
     vec![
-        CaseResult::at_most(
-            format!("{name}: |det Fp - 1| after α = {:.2}", r.alpha),
+        Row::at_most(
+            format!("{name}: |det Fp - 1| on a plastic path"),
             r.incompressibility,
             c::BOUND_INCOMPRESSIBILITY,
-        ),
-        CaseResult::relative(
+        )
+        .with_note(format!("α = {:.2}", r.alpha)),
+        Row::relative(
             format!("{name}: unloading slope [Pa]"),
             r.unloading_slope,
             r.loading_slope,
@@ -68,13 +70,9 @@ pub fn check_plastic(name: &str, m: &ElastoPlastic) -> Vec<CaseResult> {
 }
 
 /// Reference (algorithm 3) and fast (principal) returns agree on σ, Fp⁻¹ and α.
-pub fn check_returns_agree(
-    name: &str,
-    reference: &ElastoPlastic,
-    fast: &ElastoPlastic,
-) -> CaseResult {
+pub fn check_returns_agree(name: &str, reference: &ElastoPlastic, fast: &ElastoPlastic) -> Row {
     let worst = c::returns_disagreement(reference, fast);
-    CaseResult::at_most(
+    Row::at_most(
         format!("{name}: reference vs fast return"),
         worst,
         c::BOUND_RETURNS,
@@ -82,10 +80,10 @@ pub fn check_returns_agree(
 }
 
 /// Johnson-Cook in uniaxial tension against eq. 4.52.
-pub fn check_jc_uniaxial(name: &str, m: &ElastoPlastic) -> Vec<CaseResult> {
+pub fn check_jc_uniaxial(name: &str, m: &ElastoPlastic) -> Vec<Row> {
     (c::uniaxial_conditions(m).into_iter())
         .map(|(rate, theta)| {
-            CaseResult::at_most(
+            Row::at_most(
                 format!("{name}: uniaxial vs eq. 4.52, rate {rate:e}, θ {theta}"),
                 c::uniaxial_flow_error(m, rate, theta),
                 c::BOUND_UNIAXIAL,
@@ -95,15 +93,8 @@ pub fn check_jc_uniaxial(name: &str, m: &ElastoPlastic) -> Vec<CaseResult> {
 }
 
 /// dσ_xx(t)/dp over a whole adiabatic uniaxial compression path.
-pub fn check_path_sensitivities(
-    name: &str,
-    m: &ElastoPlastic,
-    params: &[&'static str],
-) -> CaseResult {
+pub fn check_path_sensitivities(name: &str, m: &ElastoPlastic, params: &[&'static str]) -> Row {
     let (worst, param) = c::path_sensitivity_error(m, params);
-    CaseResult::at_most(
-        format!("{name}: path dσ/dp vs FD (worst: {param})"),
-        worst,
-        BOUND_DERIVATIVE,
-    )
+    Row::at_most(format!("{name}: path dσ/dp vs FD"), worst, BOUND_DERIVATIVE)
+        .with_note(format!("worst: {param}"))
 }

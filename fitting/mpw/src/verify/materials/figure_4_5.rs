@@ -13,7 +13,7 @@
 //! - during the hold the rate term drops to 1: the end-of-hold stress equals the
 //!   quasi-static JC value (within 0.5 %).
 
-use crate::verify::case_result::CaseResult;
+use crate::verify::row::Row;
 use materials::driver::{self, LoadPath, Ramp, RateKind, Record, Temperature};
 use materials::flow_stress::FlowStress;
 use materials::plasticity::ElastoPlastic;
@@ -73,7 +73,7 @@ fn kirchhoff_xx(r: &Record) -> f64 {
     r.sigma[(0, 0)] * r.f.determinant()
 }
 
-pub fn cases(model: &ElastoPlastic, curves: &[Curve]) -> Vec<CaseResult> {
+pub fn cases(model: &ElastoPlastic, curves: &[Curve]) -> Vec<Row> {
     let mut out = Vec::new();
     assert!(matches!(model.flow, FlowStress::JohnsonCook(_)));
     let e = model.elastic.e;
@@ -82,7 +82,7 @@ pub fn cases(model: &ElastoPlastic, curves: &[Curve]) -> Vec<CaseResult> {
         let tau = kirchhoff_xx(r);
         let alpha = (1.0 + STRAIN_END).ln() - tau / e;
         let expected = jc(model, alpha, c.rate / (1.0 + STRAIN_END), c.theta);
-        out.push(CaseResult::relative(
+        out.push(Row::relative(
             format!("fig4.5/tau@0.6 rate {:e} T {}", c.rate, c.theta),
             tau,
             expected,
@@ -90,7 +90,7 @@ pub fn cases(model: &ElastoPlastic, curves: &[Curve]) -> Vec<CaseResult> {
         ));
         let end = c.records.last().unwrap();
         let quasi_static = jc(model, end.state.alpha, 0.0, c.theta);
-        out.push(CaseResult::relative(
+        out.push(Row::relative(
             format!(
                 "fig4.5/hold rate term -> 1, rate {:e} T {}",
                 c.rate, c.theta
@@ -106,6 +106,6 @@ pub fn cases(model: &ElastoPlastic, curves: &[Curve]) -> Vec<CaseResult> {
         .map(|c| c.records[c.ramp_end].sigma[(0, 0)])
         .collect();
     let ordered = at_end[1] > at_end[0] && at_end[0] > at_end[3] && at_end[3] > at_end[2];
-    out.push(CaseResult::holds("fig4.5/curve ordering", ordered));
+    out.push(Row::holds("fig4.5/curve ordering", ordered));
     out
 }

@@ -5,7 +5,7 @@
 //! one-step stress with a reference of `SUBSTEPS` sub-steps over the same time:
 //! error = ‖σ_one − σ_ref‖ / ‖σ_ref‖. Increments from 1 to 100 yield strains.
 
-use crate::verify::case_result::CaseResult;
+use crate::verify::row::Row;
 use materials::driver::{self, LoadPath, Ramp, Temperature};
 use materials::expm::expm;
 use materials::material::{Model, State};
@@ -134,9 +134,9 @@ pub fn radial_return_worst_error() -> f64 {
 ///   error of the classic radial return, `radial_return_worst_error` (22.2 %).
 ///   For Johnson-Cook the one-step update also averages the plastic rate over the step,
 ///   so its map is reported, not bounded.
-pub fn cases(name: &str, map: &IsoErrorMap, rate_independent: bool) -> Vec<CaseResult> {
+pub fn cases(name: &str, map: &IsoErrorMap, rate_independent: bool) -> Vec<Row> {
     let worst = map.worst_within(0.10);
-    let mut out = vec![CaseResult::holds(
+    let mut out = vec![Row::holds(
         format!("iso-error/{name}: converges up to 10% strain"),
         worst.is_some(),
     )];
@@ -146,12 +146,12 @@ pub fn cases(name: &str, map: &IsoErrorMap, rate_independent: bool) -> Vec<CaseR
             .iter()
             .filter_map(|row| row[0])
             .fold(0.0, f64::max);
-        out.push(CaseResult::at_most(
+        out.push(Row::at_most(
             format!("iso-error/{name}: radial increments exact"),
             radial,
             1e-9,
         ));
-        out.push(CaseResult::at_most(
+        out.push(Row::at_most(
             format!("iso-error/{name}: worst error up to 10% strain"),
             worst.unwrap_or(f64::INFINITY),
             radial_return_worst_error(),

@@ -1,12 +1,13 @@
 //! The materials rows of `mpw verify` (conformance of every model, figure 4.5, the
 //! iso-error maps): the application's catalogue, not the materials library. Each study
-//! gives both numbers (`CaseResult` rows) and data for charts.
+//! gives both numbers (`Row` rows) and data for charts.
 
 pub mod conformance;
 pub mod figure_4_5;
 pub mod iso_error;
 
-use crate::verify::case_result::CaseResult;
+use crate::verify::row::Row;
+use crate::verify::Inputs;
 use materials::flow_stress::{FlowStress, Voce};
 use materials::param_file::{load_elasto_plastic, load_material, ParamFileError};
 use materials::plasticity::{ElastoPlastic, ReturnMap};
@@ -26,9 +27,13 @@ pub fn j2_voce(dir: &Path) -> Result<ElastoPlastic, ParamFileError> {
     Ok(j2)
 }
 
-/// Every materials row of `mpw verify`, on the parameter sets in `dir`
-/// (`data/materials`). `full` adds the finer iso-error map.
-pub fn verify_cases(dir: &Path, full: bool) -> Result<Vec<CaseResult>, ParamFileError> {
+/// Every materials row of `mpw verify` (`full`: the finer iso-error map).
+pub fn rows(inputs: &Inputs) -> anyhow::Result<Vec<Row>> {
+    Ok(cases(&inputs.data.materials(), inputs.full)?)
+}
+
+/// The rows on the parameter sets in `dir` (`data/materials`).
+fn cases(dir: &Path, full: bool) -> Result<Vec<Row>, ParamFileError> {
     let neo_hooke = match load_material(dir.join("aisi_52100.toml"))?.model {
         AnyModel::NeoHooke(m) => m,
         AnyModel::ElastoPlastic(_) => {

@@ -53,7 +53,7 @@
 //! The time step is fixed (`DT`, 0.3 of the P-wave CFL limit h/c ≈ 1.6e-7 s) so that
 //! every kernel and the driver step alike.
 
-use crate::verify::case_result::CaseResult;
+use crate::verify::row::Row;
 use materials::driver::{self, Control, LoadPath, Ramp, Temperature};
 use materials::{load_material, AnyModel};
 use mpm_core::discretize::{fill, Geometry};
@@ -275,7 +275,7 @@ const LINEAR_SPREAD: f64 = 0.05;
 /// The verify rows: the table printed; per kernel the crossings counted, the run
 /// through, the spread and the error (asserted for linear, cpGIMP and CPDI, reported for
 /// uGIMP, whose fixed domains overlap under compression and leave part of the error).
-pub fn cases(materials: &Path, out: &mut Vec<CaseResult>) {
+pub fn cases(materials: &Path, out: &mut Vec<Row>) {
     use ShapeFunction::{Linear, UGimp};
     let path = materials.join("42crmo4_qt660.toml");
     let model = load_material(&path)
@@ -291,8 +291,8 @@ pub fn cases(materials: &Path, out: &mut Vec<CaseResult>) {
     );
     for r in &runs {
         let name = |what: &str| format!("mpm/cell-crossing/{}-{what}", r.kernel.name());
-        out.push(CaseResult::holds(name("runs-through"), r.failure.is_none()));
-        out.push(CaseResult::absolute(
+        out.push(Row::holds(name("runs-through"), r.failure.is_none()));
+        out.push(Row::absolute(
             name("points-crossed"),
             r.crossings as f64,
             expected_crossings() as f64,
@@ -301,13 +301,13 @@ pub fn cases(materials: &Path, out: &mut Vec<CaseResult>) {
         let spread = name("spread-while-crossing");
         let error = name("error-vs-driver");
         out.push(match r.kernel {
-            Linear => CaseResult::at_least(spread, r.spread[1], LINEAR_SPREAD),
-            UGimp => CaseResult::reported(spread, r.spread[1]),
-            _ => CaseResult::at_most(spread, r.spread[1], CONSISTENT_SPREAD),
+            Linear => Row::at_least(spread, r.spread[1], LINEAR_SPREAD),
+            UGimp => Row::reported(spread, r.spread[1]),
+            _ => Row::at_most(spread, r.spread[1], CONSISTENT_SPREAD),
         });
         out.push(match r.kernel {
-            Linear | UGimp => CaseResult::reported(error, r.error),
-            _ => CaseResult::at_most(error, r.error, CONSISTENT_ERROR),
+            Linear | UGimp => Row::reported(error, r.error),
+            _ => Row::at_most(error, r.error, CONSISTENT_ERROR),
         });
     }
 }

@@ -42,7 +42,7 @@
 //! shrink by ≈ 3.7× per halving of s (second order), so the sequence tends to ≈ 10.55 mm:
 //! 1.2 % below the thesis MPM value at n = 16 and 0.2 % below the FEM value.
 
-use crate::verify::case_result::CaseResult;
+use crate::verify::row::Row;
 use materials::signal::TimeSignal;
 use materials::NeoHooke;
 use mpm_core::boundary::{NodeSet, VelocityBc};
@@ -334,14 +334,14 @@ pub const MESH_ORDER: f64 = 1.0;
 /// The meshed membrane's rows (`cpdi-hex`, one point per element of `MESH_LEVELS`):
 /// u_y per level (reported), steady state per level, convergence (the second difference
 /// at most 0.75 of the first) and the extrapolant against the FEM value.
-pub fn mesh_cases(out: &mut Vec<CaseResult>) {
+pub fn mesh_cases(out: &mut Vec<Row>) {
     let rows: Result<Vec<_>, _> = MESH_LEVELS
         .iter()
         .map(|&n| relax_meshed(n, RELAXATION_TIME))
         .collect();
     let rows = match rows {
         Ok(rows) => rows,
-        Err(e) => return out.push(CaseResult::holds(format!("mpm/cook-mesh: {e}"), false)),
+        Err(e) => return out.push(Row::holds(format!("mpm/cook-mesh: {e}"), false)),
     };
     eprint!(
         "Cook's membrane on N x N quadrilaterals, cpdi-hex:\n{}",
@@ -349,20 +349,20 @@ pub fn mesh_cases(out: &mut Vec<CaseResult>) {
     );
     for r in &rows {
         let name = |what: &str| format!("mpm/cook-mesh/N{}/{what}", r.level);
-        out.push(CaseResult::reported(name("u_y"), r.u_y));
-        out.push(CaseResult::at_most(
+        out.push(Row::reported(name("u_y"), r.u_y));
+        out.push(Row::at_most(
             name("steady-K-over-W_int"),
             r.kinetic_ratio,
             STEADY_KINETIC,
         ));
-        out.push(CaseResult::at_most(
+        out.push(Row::at_most(
             name("steady-late-du-over-u"),
             r.late_change,
             STEADY_CHANGE,
         ));
     }
     let u: Vec<f64> = rows.iter().map(|r| r.u_y).collect();
-    out.extend(CaseResult::convergence(
+    out.extend(Row::convergence(
         "mpm/cook-mesh/N16-32-64/u_y",
         [u[0], u[1], u[2]],
         0.75,
@@ -370,7 +370,7 @@ pub fn mesh_cases(out: &mut Vec<CaseResult>) {
     let (coarse, fine) = (u[1], u[2]);
     let limit = extrapolate(coarse, fine, MESH_ORDER);
     let order_effect = (limit - extrapolate(coarse, fine, 2.0)).abs() / FEM_U_Y;
-    out.push(CaseResult::relative(
+    out.push(Row::relative(
         "mpm/cook-mesh/N32-N64/u_y-extrapolated-vs-FEM-10.6mm",
         limit,
         FEM_U_Y,

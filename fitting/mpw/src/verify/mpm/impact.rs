@@ -27,7 +27,7 @@
 //! y_tip = min y of the disk's points − s/2 (y_tip(0) is the target surface), and the bullet's kinetic energy ½ Σ m v² [J per metre of
 //! thickness]. SI units.
 
-use crate::verify::case_result::CaseResult;
+use crate::verify::row::Row;
 use mpm_core::discretize::{fill, Geometry};
 use mpm_core::failure::SimulationError;
 use mpm_core::kinematics::Kinematics;
@@ -158,7 +158,7 @@ pub fn plastic_impact(
 }
 
 /// `mpw verify` rows: n = 50 (reduced) or n = 80 (full), to 80 µs.
-pub fn cases(materials: &Path, full: bool, out: &mut Vec<CaseResult>) {
+pub fn cases(materials: &Path, full: bool, out: &mut Vec<Row>) {
     let n = if full { 80 } else { 50 };
     let name = format!("mpm/plastic-impact/n{n}");
     match plastic_impact(materials, n, 80e-6) {
@@ -168,28 +168,25 @@ pub fn cases(materials: &Path, full: bool, out: &mut Vec<CaseResult>) {
             for t in [10e-6, 20e-6, 40e-6, 80e-6] {
                 let (_, d, k) = r.at(t);
                 let us = t * 1e6;
-                out.push(CaseResult::reported(
-                    format!("{name}/depth at {us:.0} µs [m]"),
-                    d,
-                ));
-                out.push(CaseResult::reported(
+                out.push(Row::reported(format!("{name}/depth at {us:.0} µs [m]"), d));
+                out.push(Row::reported(
                     format!("{name}/bullet K/K0 at {us:.0} µs"),
                     k / k0,
                 ));
             }
             let (d40, d_end) = (r.at(40e-6).1, r.history.last().unwrap().1);
-            out.push(CaseResult::at_most(
+            out.push(Row::at_most(
                 format!("{name}/depth-change-40us-to-end (thesis: none)"),
                 (d_end - d40).abs() / d_end,
                 0.02,
             ));
-            out.push(CaseResult::at_most(
+            out.push(Row::at_most(
                 format!("{name}/bullet-K-at-40us/K0 (thesis: almost all transferred)"),
                 r.at(40e-6).2 / k0,
                 0.05,
             ));
         }
-        Err(e) => out.push(CaseResult::holds(format!("{name}: {e}"), false)),
+        Err(e) => out.push(Row::holds(format!("{name}: {e}"), false)),
     }
 }
 

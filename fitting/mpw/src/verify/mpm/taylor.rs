@@ -24,7 +24,7 @@
 //! Zerilli & Armstrong (1987, J. Appl. Phys. 61, 1816) in B. Banerjee's collection
 //! github.com/bbanerjee/HighRateExptData, `TaylorData/DAT/CuZerilli.dat`. SI units.
 
-use crate::verify::case_result::CaseResult;
+use crate::verify::row::Row;
 use mpm_core::discretize::{fill, Geometry};
 use mpm_core::failure::SimulationError;
 use mpm_core::kinematics::Kinematics;
@@ -280,7 +280,7 @@ fn run<const D: usize>(
 /// `mpw verify` rows: both models at dx = 0.635 mm (reduced) or 0.423 mm (full), to 80 µs.
 /// The footprint compared is the area-equivalent diameter D_A; the outer-edge diameter D_f
 /// is reported (in 3D it is set by single particles at the rim).
-pub fn cases(materials: &Path, full: bool, out: &mut Vec<CaseResult>) {
+pub fn cases(materials: &Path, full: bool, out: &mut Vec<Row>) {
     let dx = if full {
         commensurate_spacing(6)
     } else {
@@ -308,24 +308,24 @@ pub fn cases(materials: &Path, full: bool, out: &mut Vec<CaseResult>) {
         (Ok(a), Ok(s)) => (a, s),
         (a, s) => {
             for e in [a.err(), s.err()].into_iter().flatten() {
-                out.push(CaseResult::holds(format!("{name}: {e}"), false));
+                out.push(Row::holds(format!("{name}: {e}"), false));
             }
             return;
         }
     };
     for (label, r) in [("axi", &axi), ("3d-quarter", &solid)] {
-        out.push(CaseResult::relative(
+        out.push(Row::relative(
             format!("{name}/final-length-{label} vs experiment 16.205 mm"),
             r.length,
             EXPERIMENT_LENGTH,
             0.1,
         ));
-        out.push(CaseResult::at_most(
+        out.push(Row::at_most(
             format!("{name}/{label}/length-change-last-10us (at rest)"),
             r.length_change,
             0.01,
         ));
-        out.push(CaseResult::info(
+        out.push(Row::info(
             format!(
                 "{name}/footprint-D_A-{label} vs experiment (D_f {:.2} mm)",
                 r.footprint * 1e3
@@ -334,7 +334,7 @@ pub fn cases(materials: &Path, full: bool, out: &mut Vec<CaseResult>) {
             EXPERIMENT_FOOTPRINT,
         ));
     }
-    out.push(CaseResult::relative(
+    out.push(Row::relative(
         format!("{name}/final-length 3d vs axi"),
         solid.length,
         axi.length,
@@ -342,7 +342,7 @@ pub fn cases(materials: &Path, full: bool, out: &mut Vec<CaseResult>) {
     ));
     // 0.35 % apart with the fixed wall of eq. 7.28, 1.05 % with the one-sided wall and the
     // sub-cell-centre fill (3D cylinder +3.45 % mass), 0.57 % with the exact fill
-    out.push(CaseResult::relative(
+    out.push(Row::relative(
         format!("{name}/footprint-D_A 3d vs axi"),
         solid.footprint_area,
         axi.footprint_area,
@@ -357,7 +357,7 @@ pub fn cases(materials: &Path, full: bool, out: &mut Vec<CaseResult>) {
 /// under refinement (3, 6, 12 cells: the second step at most half the first), and the
 /// elastic 4340 bar's spurious yield on the axis column with CPDI at 12 cells (linear:
 /// 2.3e-3).
-fn kernel_rows(materials: &Path, out: &mut Vec<CaseResult>) {
+fn kernel_rows(materials: &Path, out: &mut Vec<Row>) {
     let name = "mpm/taylor/kernels-axi";
     let bar = |kernel, n: usize, impact, end| {
         taylor_bar(
@@ -370,7 +370,7 @@ fn kernel_rows(materials: &Path, out: &mut Vec<CaseResult>) {
         )
     };
     let at_six = |kernel: ShapeFunction, length: f64| {
-        CaseResult::relative(
+        Row::relative(
             format!(
                 "{name}/{}/n6/final-length vs experiment 16.205 mm",
                 kernel.name()
@@ -387,7 +387,7 @@ fn kernel_rows(materials: &Path, out: &mut Vec<CaseResult>) {
     ] {
         match bar(kernel, 6, COPPER, 80e-6) {
             Ok(r) => out.push(at_six(kernel, r.length)),
-            Err(e) => out.push(CaseResult::holds(
+            Err(e) => out.push(Row::holds(
                 format!("{name}/{}/n6: {e}", kernel.name()),
                 false,
             )),
@@ -400,40 +400,34 @@ fn kernel_rows(materials: &Path, out: &mut Vec<CaseResult>) {
     match lengths {
         Ok(l) => {
             out.push(at_six(ShapeFunction::Cpdi, l[1]));
-            out.extend(CaseResult::convergence(
+            out.extend(Row::convergence(
                 &format!("{name}/cpdi/n3-6-12/final-length"),
                 [l[0], l[1], l[2]],
                 0.5,
             ));
-            out.push(CaseResult::relative(
+            out.push(Row::relative(
                 format!("{name}/cpdi/n12/final-length vs experiment 16.205 mm"),
                 l[2],
                 EXPERIMENT_LENGTH,
                 0.1,
             ));
         }
-        Err(e) => out.push(CaseResult::holds(
-            format!("{name}/cpdi refinement: {e}"),
-            false,
-        )),
+        Err(e) => out.push(Row::holds(format!("{name}/cpdi refinement: {e}"), false)),
     }
     match bar(ShapeFunction::Cpdi, 12, ELASTIC_4340, 40e-6) {
-        Ok(r) => out.push(CaseResult::info(
+        Ok(r) => out.push(Row::info(
             format!("{name}/cpdi/elastic-4340-12m_s/max-alpha at 12 cells across R (must be 0)"),
             r.max_alpha,
             0.0,
         )),
-        Err(e) => out.push(CaseResult::holds(
-            format!("{name}/cpdi/elastic: {e}"),
-            false,
-        )),
+        Err(e) => out.push(Row::holds(format!("{name}/cpdi/elastic: {e}"), false)),
     }
 }
 
 /// Reported, not asserted (both open questions: docs/verification.md): the copper bar's final length at 3, 6
 /// and 12 cells across the radius with its successive differences, and the largest α of
 /// the elastic 4340 bar (must be 0) at 6 and 12 cells.
-fn refinement_rows(materials: &Path, out: &mut Vec<CaseResult>) {
+fn refinement_rows(materials: &Path, out: &mut Vec<Row>) {
     let name = "mpm/taylor/refinement-axi";
     let lengths: Result<Vec<f64>, _> = [3, 6, 12]
         .iter()
@@ -450,28 +444,31 @@ fn refinement_rows(materials: &Path, out: &mut Vec<CaseResult>) {
         })
         .collect();
     match lengths {
-        Ok(l) => out.push(CaseResult::info(
-            format!(
-                "{name}/L_f at 3, 6, 12 cells across R: {:.3}, {:.3}, {:.3} mm, differences {:+.3}, {:+.3} mm (gap: the differences grow again at 18 and 24 cells, README)",
+        Ok(l) => out.push(
+            Row::info(
+                format!("{name}/L_f at 12 against 6 cells across R (gap: the differences grow again at 18 and 24 cells, docs/verification.md)"),
+                l[2],
+                l[1],
+            )
+            .with_note(format!(
+                "L_f at 3, 6, 12 cells: {:.3}, {:.3}, {:.3} mm, differences {:+.3}, {:+.3} mm",
                 l[0] * 1e3,
                 l[1] * 1e3,
                 l[2] * 1e3,
                 (l[1] - l[0]) * 1e3,
                 (l[2] - l[1]) * 1e3,
-            ),
-            l[2],
-            l[1],
-        )),
-        Err(e) => out.push(CaseResult::holds(format!("{name}: {e}"), false)),
+            )),
+        ),
+        Err(e) => out.push(Row::holds(format!("{name}: {e}"), false)),
     }
     for n in [6, 12] {
         match taylor_bar(materials, (Model::Axisymmetric, ShapeFunction::Linear), ELASTIC_4340, RADIUS / n as f64, 2, 40e-6) {
-            Ok(r) => out.push(CaseResult::info(
+            Ok(r) => out.push(Row::info(
                 format!("{name}/elastic-4340-12m_s/max-alpha at {n} cells across R (must be 0: gap, on the axis column)"),
                 r.max_alpha,
                 0.0,
             )),
-            Err(e) => out.push(CaseResult::holds(format!("{name}/elastic n={n}: {e}"), false)),
+            Err(e) => out.push(Row::holds(format!("{name}/elastic n={n}: {e}"), false)),
         }
     }
 }

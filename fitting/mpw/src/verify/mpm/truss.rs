@@ -13,7 +13,7 @@
 //! linear MPM at n = 6). The control point A is the centre of the top face, measured as
 //! the mean position of the top-row points nearest to the axis.
 
-use crate::verify::case_result::CaseResult;
+use crate::verify::row::Row;
 use mpm_core::scene::{self, Simulation};
 use mpm_core::shape::ShapeFunction;
 use mpm_core::solver::Solver;
@@ -204,17 +204,17 @@ fn top_centre<const D: usize>(x0: &[SVector<f64, D>], up: usize) -> Vec<usize> {
 /// 3D at 6³ on 0.5 m cells (asserted to run through); `full` adds 3D 20³ on 0.2 m cells,
 /// which the thesis runs through with CPDI and which inverts a point here (reported: the
 /// time reached against the end). Separation: `TrussRun::separation_limit`.
-pub fn cases(scenes: &Path, full: bool, out: &mut Vec<CaseResult>) {
+pub fn cases(scenes: &Path, full: bool, out: &mut Vec<Row>) {
     use ShapeFunction::{CpGimp, CpGimpAnalytic, Cpdi, Linear, UGimp};
     let plane = scenes.join("truss.toml");
     let dx = 0.5;
     let cpdi: Vec<TrussRun> = [10, 20, 40].map(|n| truss(&plane, Cpdi, dx, n)).into();
     let converged = cpdi[2].a_peak();
-    out.push(CaseResult::reported(
+    out.push(Row::reported(
         "mpm/truss/cpdi-n40-peak-elongation-m",
         converged,
     ));
-    out.extend(CaseResult::convergence(
+    out.extend(Row::convergence(
         "mpm/truss/cpdi-n10-20-40/peak-elongation",
         [cpdi[0].a_peak(), cpdi[1].a_peak(), cpdi[2].a_peak()],
         0.5,
@@ -235,31 +235,31 @@ pub fn cases(scenes: &Path, full: bool, out: &mut Vec<CaseResult>) {
             run.per_edge
         );
         out.push(match separates {
-            true => CaseResult::at_least(name, gap, limit),
-            false => CaseResult::at_most(name, gap, limit),
+            true => Row::at_least(name, gap, limit),
+            false => Row::at_most(name, gap, limit),
         });
     }
     let [(linear, _), _, (cpgimp, _), (cpdi_6, _), _] = &runs;
     // the thesis shows the separated upper part at t = 8.4e-2 s (figure 10.4)
-    out.push(CaseResult::info(
+    out.push(Row::info(
         "mpm/truss/linear-n6-first-gap-over-a-cell-s",
         linear.first_gap_beyond(1.0),
         8.4e-2,
     ));
-    out.push(CaseResult::relative(
+    out.push(Row::relative(
         "mpm/truss/cpgimp-n6-peak-vs-cpdi",
         cpgimp.a_peak(),
         cpdi_6.a_peak(),
         1e-2,
     ));
-    out.push(CaseResult::reported(
+    out.push(Row::reported(
         "mpm/truss/ugimp-n6-largest-gap-cells",
         truss(&plane, UGimp, dx, 6).separation(),
     ));
     // the thesis: a finer grid gives a "considerably different" shape (figure 10.8)
     for (spacing, n) in [(0.25, 40), (0.125, 40)] {
         let run = truss(&plane, Cpdi, spacing, n);
-        out.push(CaseResult::info(
+        out.push(Row::info(
             format!("mpm/truss/cpdi-dx{spacing}-n{n}-a-at-0.199s-m"),
             run.a_at(0.199),
             cpdi[2].a_at(0.199),
@@ -274,14 +274,14 @@ pub fn cases(scenes: &Path, full: bool, out: &mut Vec<CaseResult>) {
         let run = truss(&solid, kernel, spacing, n);
         let name = format!("mpm/truss-3d/{}-{n}x{n}x{n}-dx{spacing}", kernel.name());
         out.push(match asserted {
-            true => CaseResult::holds(format!("{name}-runs-through"), run.ran_through()),
-            false => CaseResult::info(
+            true => Row::holds(format!("{name}-runs-through"), run.ran_through()),
+            false => Row::info(
                 format!("{name}-time-reached-s (gap: the thesis runs through)"),
                 run.history.last().map_or(0.0, |h| h.t),
                 0.25,
             ),
         });
-        out.push(CaseResult::reported(
+        out.push(Row::reported(
             format!("{name}-peak-elongation-m"),
             run.a_peak(),
         ));
