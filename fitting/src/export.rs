@@ -15,9 +15,10 @@
 //! against the keyword manual): failure strain D1 = 1e20 with D2-D5 = 0, pressure cutoff
 //! PC = -1e20 with SPALL = 1. mpw identifies no failure model; the user adds theirs.
 
-use crate::fit::model::Material;
+use crate::fit::levels::model::Material;
 use anyhow::{bail, Result};
 use materials::material::Model;
+use materials::parameters::{parameter, Quantity};
 use std::fmt::Write as _;
 
 /// A consistent unit system: factors from SI to it.
@@ -88,56 +89,51 @@ pub fn units(name: &str) -> Result<Units> {
     }
 }
 
-/// Each exported parameter: mpw name, how its SI value converts, label for the JSON card.
-#[derive(Clone, Copy)]
-enum Kind {
-    Stress,
-    Density,
-    Rate,
-    SpecificHeat,
-    Temperature,
-    Plain,
-}
-
-const FIELDS: [(&str, Kind); 14] = [
-    ("E", Kind::Stress),
-    ("nu", Kind::Plain),
-    ("rho", Kind::Density),
-    ("A", Kind::Stress),
-    ("B", Kind::Stress),
-    ("N", Kind::Plain),
-    ("C", Kind::Plain),
-    ("M", Kind::Plain),
-    ("alpha_dot0", Kind::Rate),
-    ("theta_m", Kind::Temperature),
-    ("theta0", Kind::Temperature),
-    ("c_theta", Kind::SpecificHeat),
-    ("alpha_sigma", Kind::Plain),
-    ("gamma_tq", Kind::Plain),
+/// The parameters of a Johnson-Cook card, in card order (quantities and units from
+/// `materials::parameters`).
+const FIELDS: [&str; 14] = [
+    "E",
+    "nu",
+    "rho",
+    "A",
+    "B",
+    "N",
+    "C",
+    "M",
+    "alpha_dot0",
+    "theta_m",
+    "theta0",
+    "c_theta",
+    "alpha_sigma",
+    "gamma_tq",
 ];
 
 impl Units {
-    fn factor(&self, kind: Kind) -> (f64, &'static str) {
-        match kind {
-            Kind::Stress => (self.stress, self.stress_unit),
-            Kind::Density => (self.density, self.density_unit),
-            Kind::Rate => (self.rate, self.rate_unit),
-            Kind::SpecificHeat => (self.specific_heat, self.specific_heat_unit),
-            Kind::Temperature => (1.0, "K"),
-            Kind::Plain => (1.0, "1"),
+    fn factor(&self, quantity: Quantity) -> (f64, &'static str) {
+        match quantity {
+            Quantity::Stress => (self.stress, self.stress_unit),
+            Quantity::Density => (self.density, self.density_unit),
+            Quantity::Rate => (self.rate, self.rate_unit),
+            Quantity::SpecificHeat => (self.specific_heat, self.specific_heat_unit),
+            Quantity::Temperature | Quantity::Dimensionless | Quantity::ThermalExpansion => {
+                (1.0, quantity.si_unit())
+            }
         }
     }
 }
 
 /// The value of parameter `name` of `m` in `units`, and its unit.
 pub fn value(m: &Material, name: &str, units: &Units) -> Result<(f64, &'static str)> {
-    let Some(&(_, kind)) = FIELDS.iter().find(|(n, _)| *n == name) else {
+    let Some(quantity) = (FIELDS.contains(&name))
+        .then(|| parameter(name).map(|p| p.quantity))
+        .flatten()
+    else {
         bail!("`{name}` is not an exported parameter");
     };
     let Some(si) = m.param(name) else {
         bail!("the material has no parameter `{name}` (a Johnson-Cook model is needed)");
     };
-    let (factor, unit) = units.factor(kind);
+    let (factor, unit) = units.factor(quantity);
     Ok((si * factor, unit))
 }
 
@@ -333,7 +329,7 @@ pub fn lsdyna(m: &Material, name: &str, source: &str, units: &Units, id: u32) ->
 pub fn json(m: &Material, name: &str, source: &str, units: &Units) -> Result<String> {
     let quoted = |s: &str| format!("\"{}\"", s.replace('\\', "\\\\").replace('"', "\\\""));
     let mut fields = Vec::new();
-    for (n, _) in FIELDS {
+    for n in FIELDS {
         let (x, unit) = value(m, n, units)?;
         let x = Num(x);
         fields.push(format!(

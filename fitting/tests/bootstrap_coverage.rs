@@ -13,15 +13,15 @@
 //! instead (their s² holds the whole-curve scatter); the test prints the ratios. Env
 //! `COVERAGE_SEEDS` and `COVERAGE_SAMPLES` run a larger study.
 
-use fitting::fit::bootstrap::bootstrap;
-use fitting::fit::fit_set::{FitSet, Stage};
-use fitting::fit::model::{ExperimentModel, Material};
+use fitting::fit::levels::model::{ExperimentModel, Material};
+use fitting::fit::levels::single_point::SinglePoint;
+use fitting::fit::levels::tensile::{Tensile, Thermal};
 use fitting::fit::objective::Block;
+use fitting::fit::optimize::run::{run_fit, Optimizer};
 use fitting::fit::params::FreeParam;
-use fitting::fit::run::{run_fit, Optimizer};
-use fitting::fit::single_point::SinglePoint;
-use fitting::fit::synth::gaussian;
-use fitting::fit::tensile::{Tensile, Thermal};
+use fitting::fit::sets::fit_set::{FitSet, Stage};
+use fitting::fit::statistics::bootstrap::bootstrap;
+use fitting::fit::synthetic::synth::gaussian;
 use materials::material::Model;
 use rand::SeedableRng;
 use rand_pcg::Pcg64;
@@ -116,7 +116,7 @@ fn population(seed: u64) -> FitSet {
         blocks,
         optimizer: "lm".into(),
         starts: 1,
-        ftol: fitting::fit::lm::LmOptions::default().ftol,
+        ftol: fitting::fit::optimize::lm::LmOptions::default().ftol,
         seed,
         truth: BTreeMap::new(),
     }

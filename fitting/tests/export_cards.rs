@@ -4,7 +4,7 @@
 //! card's 10-character fields to the precision of 9 written characters.
 
 use fitting::export::{abaqus, field10, json, lsdyna, UNIT_SYSTEMS};
-use fitting::fit::model::Material;
+use fitting::fit::levels::model::Material;
 use materials::material::Model;
 use std::path::Path;
 
@@ -115,6 +115,7 @@ fn json_card_reads_back_with_units() {
             ("C", 1.0, "1"),
             ("M", 1.0, "1"),
             ("gamma_tq", 1.0, "1"),
+            ("alpha_sigma", 1.0, "1/K"),
         ] {
             let (v, got_unit) = json_field(&card, name);
             let expected = m.param(name).unwrap() * factor;

@@ -189,7 +189,7 @@ fn a_set_file_with_a_bad_drive_names_it() {
     ] {
         let file = std::env::temp_dir().join(format!("mpw-drive-{}.toml", std::process::id()));
         std::fs::write(&file, text.replacen(first, to, 1)).unwrap();
-        let result = fitting::fit::fit_set::FitSet::load(&file);
+        let result = fitting::fit::sets::fit_set::FitSet::load(&file);
         std::fs::remove_file(&file).unwrap();
         let e = format!("{:#}", result.err().expect(to));
         assert!(e.contains(expect) && e.contains("test_01"), "{to}: {e}");
@@ -223,7 +223,7 @@ fn the_shipped_mpm_sets_load() {
     }
     let experiments = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/experiments");
     for file in ["fit_945_mpm.toml", "fit_945_mpm_pulse.toml"] {
-        let set = fitting::fit::fit_set::FitSet::load(&experiments.join(file))
+        let set = fitting::fit::sets::fit_set::FitSet::load(&experiments.join(file))
             .unwrap_or_else(|e| panic!("{file}: {e:#}"));
         assert_eq!(set.blocks.len(), 6, "{file}");
         for block in &set.blocks {
@@ -235,7 +235,7 @@ fn the_shipped_mpm_sets_load() {
     let text = mpm_set_text().replace("level = \"mpm-axisymmetric\"", "level = \"mpm-3d-quarter\"");
     let file = std::env::temp_dir().join(format!("mpw-quarter-{}.toml", std::process::id()));
     std::fs::write(&file, text).unwrap();
-    let set = fitting::fit::fit_set::FitSet::load(&file);
+    let set = fitting::fit::sets::fit_set::FitSet::load(&file);
     std::fs::remove_file(&file).unwrap();
     let set = set.unwrap_or_else(|e| panic!("{e:#}"));
     assert_eq!(set.blocks.len(), 6);

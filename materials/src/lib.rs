@@ -20,6 +20,7 @@ pub mod material;
 pub mod near_one;
 pub mod neo_hooke;
 pub mod param_file;
+pub mod parameters;
 pub mod params;
 pub mod plasticity;
 pub mod preheated;

@@ -1,9 +1,10 @@
-//! The largest sizes that input data may ask for. A count derived from data (steps of a
-//! load path from a strain history, particles from a body and a spacing, grid nodes from
-//! particle extents, samples of a signal) is checked here before anything of that size is
-//! allocated, so that one mistyped value gives an error instead of exhausting memory
-//!. Each limit is far above what any shipped case or real record needs and
-//! well below what would freeze a 24 GiB workstation; the error says which.
+//! The largest sizes that input data may ask for (`SizeLimit`): a count derived from data
+//! (here: steps of a load path from a strain history; in mpm-core: particles, grid nodes
+//! and time steps; in the readers of fitting: file sizes and signal samples) is checked
+//! before anything of that size is allocated, so that one mistyped value gives an error
+//! instead of exhausting memory. Each limit is far above what any shipped case or real
+//! record needs and well below what would freeze a 24 GiB workstation; the error says
+//! which.
 
 use thiserror::Error;
 
@@ -24,41 +25,6 @@ pub const LOAD_PATH_STEPS: SizeLimit = SizeLimit {
     what: "load-path steps",
     max: 5_000_000,
     bytes_each: 400,
-};
-
-/// Material points of a scene (the shipped 3D Taylor bar has 4·10⁵).
-pub const PARTICLES: SizeLimit = SizeLimit {
-    what: "material points",
-    max: 50_000_000,
-    bytes_each: 300,
-};
-
-/// Nodes of a background grid.
-pub const GRID_NODES: SizeLimit = SizeLimit {
-    what: "grid nodes",
-    max: 100_000_000,
-    bytes_each: 120,
-};
-
-/// Time steps of one run (`time.end / Δt`); the run keeps a few numbers per history row.
-pub const TIME_STEPS: SizeLimit = SizeLimit {
-    what: "time steps",
-    max: 100_000_000,
-    bytes_each: 32,
-};
-
-/// Samples of a signal resampled from a record.
-pub const SIGNAL_SAMPLES: SizeLimit = SizeLimit {
-    what: "signal samples",
-    max: 50_000_000,
-    bytes_each: 8,
-};
-
-/// Bytes of one experiment CSV, which is read into memory whole.
-pub const TEXT_FILE_BYTES: SizeLimit = SizeLimit {
-    what: "bytes of a text data file",
-    max: 512 << 20,
-    bytes_each: 1,
 };
 
 /// A count that broke its limit, or that is not a finite non-negative number.

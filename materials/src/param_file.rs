@@ -17,6 +17,7 @@ use crate::any_model::AnyModel;
 use crate::elastic::Elastic;
 use crate::flow_stress::{FlowStress, JohnsonCookLaw, Voce};
 use crate::neo_hooke::NeoHooke;
+use crate::parameters::{accepted, Range};
 use crate::plasticity::{ElastoPlastic, ReturnMap, Thermal};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -54,90 +55,6 @@ fn located(file: &Path, line: Option<usize>) -> String {
 pub struct MaterialFile {
     pub name: String,
     pub model: AnyModel<f64>,
-}
-
-/// Allowed open/closed interval of a field.
-#[derive(Clone, Copy)]
-struct Range {
-    lo: f64,
-    lo_open: bool,
-    hi: f64,
-    hi_open: bool,
-    /// The likely mistake behind a value outside, for the message ("" for none).
-    hint: &'static str,
-}
-
-impl Range {
-    const fn positive() -> Self {
-        Range {
-            lo: 0.0,
-            lo_open: true,
-            hi: f64::INFINITY,
-            hi_open: true,
-            hint: "",
-        }
-    }
-    const fn non_negative() -> Self {
-        Range {
-            lo: 0.0,
-            lo_open: false,
-            hi: f64::INFINITY,
-            hi_open: true,
-            hint: "",
-        }
-    }
-    const fn closed(lo: f64, hi: f64) -> Self {
-        Range {
-            lo,
-            lo_open: false,
-            hi,
-            hi_open: false,
-            hint: "",
-        }
-    }
-    const fn open(lo: f64, hi: f64) -> Self {
-        Range {
-            lo,
-            lo_open: true,
-            hi,
-            hi_open: true,
-            hint: "",
-        }
-    }
-    /// A closed range with the likely mistake behind a value outside it: the metal bounds
-    /// of a Johnson-Cook file (E = 224.2 "Pa" ran and gave σ = 0).
-    const fn plausible(lo: f64, hi: f64, hint: &'static str) -> Self {
-        Range {
-            hint,
-            ..Range::closed(lo, hi)
-        }
-    }
-    fn contains(&self, v: f64) -> bool {
-        let above = if self.lo_open {
-            v > self.lo
-        } else {
-            v >= self.lo
-        };
-        let below = if self.hi_open {
-            v < self.hi
-        } else {
-            v <= self.hi
-        };
-        v.is_finite() && above && below
-    }
-    fn describe(&self) -> String {
-        format!(
-            "{}{}, {}{}",
-            if self.lo_open { "(" } else { "[" },
-            self.lo,
-            if self.hi.is_infinite() {
-                "inf".to_string()
-            } else {
-                self.hi.to_string()
-            },
-            if self.hi_open { ")" } else { "]" }
-        )
-    }
 }
 
 struct Reader<'a> {
@@ -299,29 +216,14 @@ pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFile
     let name = r.string(&root, "name")?.unwrap_or("unnamed").to_string();
     let metal = model_kind == "johnson-cook";
     let (e_range, rho_range) = if metal {
-        (
-            Range::plausible(
-                1e9,
-                1e12,
-                "a metal's E in Pa, e.g. 210e9 for steel (GPa or MPa given?)",
-            ),
-            Range::plausible(
-                500.0,
-                25e3,
-                "a metal's density in kg/m^3, e.g. 7850 for steel (g/cm^3 given?)",
-            ),
-        )
+        (accepted("E"), accepted("rho"))
     } else {
         (Range::positive(), Range::positive())
     };
     let [e, nu, rho] = r.numbers(
         r.section(&root, "elastic")?,
         "elastic",
-        [
-            ("E", e_range),
-            ("nu", Range::open(-1.0, 0.5)),
-            ("rho", rho_range),
-        ],
+        [("E", e_range), ("nu", accepted("nu")), ("rho", rho_range)],
     )?;
     let elastic = Elastic { e, nu, rho };
     let return_map = match r.string(&root, "return_map")? {
@@ -343,12 +245,7 @@ pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFile
             let [tau0, tau_inf, eta, h] = r.numbers(
                 r.section(&root, "voce")?,
                 "voce",
-                [
-                    ("tau0", Range::positive()),
-                    ("tau_inf", Range::positive()),
-                    ("eta", Range::non_negative()),
-                    ("h", Range::non_negative()),
-                ],
+                ["tau0", "tau_inf", "eta", "h"].map(|n| (n, accepted(n))),
             )?;
             AnyModel::ElastoPlastic(ElastoPlastic {
                 elastic,
@@ -371,45 +268,25 @@ pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFile
             let [theta0, c_theta, alpha_sigma, gamma_tq] = r.numbers(
                 r.section(&root, "thermal")?,
                 "thermal",
-                [
-                    ("theta0", Range::positive()),
-                    ("c_theta", Range::positive()),
-                    ("alpha_sigma", Range::non_negative()),
-                    ("gamma_tq", Range::closed(0.0, 1.0)),
-                ],
+                ["theta0", "c_theta", "alpha_sigma", "gamma_tq"].map(|n| (n, accepted(n))),
             )?;
             let [a, b, n, c, m, alpha_dot0, theta_m] = r.numbers(
                 r.section(&root, "johnson_cook")?,
                 "johnson_cook",
                 [
-                    (
-                        "A",
-                        Range::plausible(
-                            1e6,
-                            1e10,
-                            "a yield stress in Pa, e.g. 8e8 for 800 MPa (MPa given?)",
-                        ),
-                    ),
-                    (
-                        "B",
-                        Range::plausible(
-                            0.0,
-                            1e10,
-                            "a hardening modulus in Pa, e.g. 5e8 for 500 MPa (MPa given?)",
-                        ),
-                    ),
-                    ("N", Range::open(0.0, 5.0)),
-                    ("C", Range::non_negative()),
-                    ("M", Range::positive()),
-                    ("alpha_dot0", Range::positive()),
+                    ("A", accepted("A")),
+                    ("B", accepted("B")),
+                    ("N", accepted("N")),
+                    ("C", accepted("C")),
+                    ("M", accepted("M")),
+                    ("alpha_dot0", accepted("alpha_dot0")),
                     (
                         "theta_m",
                         Range {
                             lo: theta0,
                             lo_open: true,
-                            hi: f64::INFINITY,
-                            hi_open: true,
                             hint: "the melting temperature in K, above theta0",
+                            ..accepted("theta_m")
                         },
                     ),
                 ],

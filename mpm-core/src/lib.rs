@@ -22,6 +22,7 @@ pub mod discretize;
 pub mod failure;
 pub mod grid;
 pub mod kinematics;
+pub mod limits;
 pub mod material_block;
 pub mod mesh;
 pub mod parallel;

@@ -8,13 +8,13 @@
 //! `Interrupted`: its last state written, its results collected.
 
 use crate::failure::{Cause, SimulationError};
+use crate::limits::TIME_STEPS;
 use crate::output::{HistoryWriter, SnapshotWriter};
 use crate::results::{self, NamedResult, RestTracker};
 use crate::scene::{Scene, Simulation};
 use crate::solver::observer::{Every, Observer};
 use crate::solver::TimeStep;
 use crate::solver::{RunError, Solver, TimeStepChange};
-use materials::limits::TIME_STEPS;
 use std::ops::ControlFlow;
 use std::path::Path;
 

@@ -15,7 +15,10 @@ fn defaults_outside_the_repository_end_with_a_hint() {
             .unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
-        assert!(err.starts_with("error: ") && err.contains(": data/"), "{args:?}: {err}");
+        assert!(
+            err.starts_with("error: ") && err.contains(": data/"),
+            "{args:?}: {err}"
+        );
         assert!(
             err.contains("hint: the default files (data/...)"),
             "{args:?}: {err}"

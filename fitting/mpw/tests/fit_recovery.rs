@@ -1,8 +1,8 @@
 //! Fitting: truth recovery from the shipped synthetic set, the exact Jacobian, and the
 //! six 945 SHPB records within 5 % RMS.
 
-use fitting::fit::fit_set::{FitSet, Stage};
-use fitting::fit::run::{run_fit, Optimizer};
+use fitting::fit::optimize::run::{run_fit, Optimizer};
+use fitting::fit::sets::fit_set::{FitSet, Stage};
 use materials::material::Model;
 use mpw::verify::data::VerifyData;
 use mpw::verify::fit::{jacobian_vs_fd, recovery_cases, steel_945_cases};

@@ -55,7 +55,7 @@ impl RawRecord {
             reason,
         };
         let size = std::fs::metadata(file).map_err(io)?.len();
-        materials::limits::TEXT_FILE_BYTES
+        crate::experiment::limits::TEXT_FILE_BYTES
             .check(size as f64, || file.display().to_string())
             .map_err(|e| invalid(file, 1, 1, "file", e.to_string()))?;
         let bytes = std::fs::read(file).map_err(io)?;

@@ -8,6 +8,7 @@
 mod error;
 pub mod header;
 pub mod lanl_raw;
+pub mod limits;
 mod pattern;
 mod shpb;
 mod sidecar;

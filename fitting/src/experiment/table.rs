@@ -5,7 +5,7 @@
 //! hold metadata (`# temperature_K: 297.04`, read by `header`).
 
 use super::error::{ExperimentError, Location};
-use materials::limits::TEXT_FILE_BYTES;
+use crate::experiment::limits::TEXT_FILE_BYTES;
 use std::path::{Path, PathBuf};
 
 pub(crate) struct CsvTable {

@@ -1,27 +1,13 @@
-//! Johnson-Cook parameter identification: model levels for experiments, the objective,
-//! optimizers (Nelder-Mead from argmin, Levenberg-Marquardt with the exact AD Jacobian or
-//! finite differences), staged and multi-start fits, statistics and reports.
+//! Johnson-Cook parameter identification, by concept: the parameter space (`params`) and
+//! the objective (`objective`); model levels (`levels`); experiment sets (`sets`);
+//! optimizers and staged, multi-start fits (`optimize`); statistics (`statistics`);
+//! reports (`reports`); synthetic data (`synthetic`).
 
-pub mod assumptions;
-pub mod bootstrap;
-pub mod cross_validation;
-pub mod fit_set;
-pub mod identifiability;
-pub mod lm;
-pub mod model;
-pub mod mpm_shpb;
-pub mod mpm_synthetic;
-pub mod nelder_mead;
+pub mod levels;
 pub mod objective;
+pub mod optimize;
 pub mod params;
-pub mod report;
-pub mod run;
-pub mod scatter;
-pub mod set_file;
-pub mod shpb_input;
-pub mod shpb_specimen;
-pub mod single_point;
-pub mod study_report;
-pub mod synth;
-pub mod tensile;
-pub mod trace;
+pub mod reports;
+pub mod sets;
+pub mod statistics;
+pub mod synthetic;

@@ -7,8 +7,8 @@
 //! enter through the unbounded coordinates u of `ParamSpace`; the Jacobian dr/du is
 //! dr/dp · diag(dp/du). Experiments are evaluated in parallel.
 
-use super::model::{finite_difference, with_values, ExperimentModel, Material};
-use super::params::ParamSpace;
+use crate::fit::levels::model::{finite_difference, with_values, ExperimentModel, Material};
+use crate::fit::params::ParamSpace;
 use anyhow::{bail, Context, Result};
 use nalgebra::DMatrix;
 use rayon::prelude::*;
@@ -39,7 +39,7 @@ pub struct Block {
     /// Test temperature [K].
     pub temperature_k: f64,
     /// Records of one group (tensile: same nominal rate and temperature) are compared as
-    /// a specimen population (`fit::scatter`); `None`: a group of its own.
+    /// a specimen population (`fit::statistics::scatter`); `None`: a group of its own.
     pub group: Option<String>,
     /// Where rate and temperature were read (TOML key or CSV header line), for reports.
     pub metadata_source: String,

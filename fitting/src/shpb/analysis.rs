@@ -23,8 +23,8 @@ use super::gauges::{GaugeSignals, Pulse};
 use super::plateau::Plateau;
 use super::pulses::{detect_pulses, smoothing_width, PulseWindows};
 use super::signal::{cumulative_integral, mean_std, moving_average};
+use crate::experiment::limits::SIGNAL_SAMPLES;
 use crate::experiment::ShpbExperiment;
-use materials::limits::SIGNAL_SAMPLES;
 use std::path::Path;
 
 /// Histories at the specimen faces, sampled at the record's mean sampling interval.

@@ -12,7 +12,7 @@
 //! contact_factor = 1.0            # contact frequency ω_c over c/s
 //! safety = 0.3                    # CFL safety factor
 //! shape_function = "linear"       # default; any kernel of `mpm_core::shape` ("cpdi" is the
-//!                                 #   fit level's default and converges, see `fit::mpm_shpb`)
+//!                                 #   fit level's default and converges, see `fit::levels::mpm_shpb`)
 //! ```
 
 use super::{record, Drive, ModelSettings, ShpbModel};

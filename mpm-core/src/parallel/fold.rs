@@ -123,15 +123,8 @@ where
 
 #[cfg(test)]
 mod tests {
-    use super::super::with_warm_pool;
+    use super::super::{test_pool as pool, with_warm_pool};
     use super::*;
-
-    fn pool(threads: usize) -> rayon::ThreadPool {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-    }
 
     /// A sum whose rounding shows the order of its terms: the same bits on the calling
     /// thread, through rayon and through the warm team, on 1-4 threads.

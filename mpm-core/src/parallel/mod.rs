@@ -32,3 +32,12 @@ pub use cut::{
 };
 pub use fold::{filter_map, fixed_sum, fold, for_each, map};
 pub use team::{is_warm, with_warm_pool};
+
+/// A rayon pool of `threads` threads, for the tests of every way of running.
+#[cfg(test)]
+fn test_pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a test pool")
+}

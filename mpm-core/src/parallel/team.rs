@@ -294,16 +294,9 @@ impl Team {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{fold, for_each, Cut};
+    use super::super::{fold, for_each, test_pool as pool, Cut};
     use super::*;
     use rayon::prelude::*;
-
-    fn pool(threads: usize) -> rayon::ThreadPool {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-    }
 
     /// A piece that panics on a helper reaches the caller, and the pool stays usable.
     #[test]

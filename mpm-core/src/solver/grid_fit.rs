@@ -5,12 +5,12 @@
 
 use super::Solver;
 use crate::failure::{Cause, SimulationError};
+use crate::limits::GRID_NODES;
 use crate::parallel;
 use crate::shape::{
     CpGimp, CpGimpAnalytic, Cpdi, CpdiHex, Kernel, Linear, Point, Reach, ShapeFunction, UGimp,
 };
 use crate::weights::Domains;
-use materials::limits::GRID_NODES;
 use nalgebra::SVector;
 use rayon::prelude::*;
 

@@ -5,12 +5,12 @@
 
 use crate::charts::{LineChart, Series};
 use anyhow::Result;
-use fitting::fit::bootstrap::Bootstrap;
-use fitting::fit::fit_set::FitSet;
 use fitting::fit::objective::Block;
-use fitting::fit::report::sanitize;
-use fitting::fit::run::FitResult;
-use fitting::fit::scatter::scatter;
+use fitting::fit::optimize::run::FitResult;
+use fitting::fit::reports::report::sanitize;
+use fitting::fit::sets::fit_set::FitSet;
+use fitting::fit::statistics::bootstrap::Bootstrap;
+use fitting::fit::statistics::scatter::scatter;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::fmt::Write as _;
@@ -101,7 +101,7 @@ pub fn fit_charts(dir: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
 }
 
 /// Per group of several records (`group_<label>_scatter.png`): the mean measured curve,
-/// its ±1 sd band over the records and the mean of the model's predictions (`fit::scatter`),
+/// its ±1 sd band over the records and the mean of the model's predictions (`fit::statistics::scatter`),
 /// with the bootstrap's 95 % band of the latter when there is one.
 pub fn scatter_charts(
     dir: &Path,
@@ -252,7 +252,7 @@ pub fn comparison(dir: &Path, runs: &[FitResult]) -> Result<String> {
     for r in runs {
         for s in &r.stages {
             let run = &s.runs[s.best];
-            let pts = |f: &dyn Fn(&fitting::fit::trace::HistoryPoint) -> f64| -> Vec<(f64, f64)> {
+            let pts = |f: &dyn Fn(&fitting::fit::optimize::trace::HistoryPoint) -> f64| -> Vec<(f64, f64)> {
                 run.history.iter().map(|h| (f(h), h.cost.log10())).collect()
             };
             by_evals = by_evals.with(Series {

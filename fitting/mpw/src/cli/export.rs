@@ -4,7 +4,7 @@
 
 use anyhow::{bail, Result};
 use fitting::export::{abaqus, json, lsdyna, units};
-use fitting::fit::report::read_parameters;
+use fitting::fit::reports::report::read_parameters;
 use materials::AnyModel;
 use std::path::PathBuf;
 

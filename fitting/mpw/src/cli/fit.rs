@@ -6,17 +6,17 @@
 use crate::charts::fit as fit_charts;
 use crate::cli::progress::ProgressLine;
 use anyhow::Result;
-use fitting::fit::bootstrap::bootstrap;
-use fitting::fit::cross_validation::leave_one_group_out;
-use fitting::fit::fit_set::FitSet;
 use fitting::fit::objective::Block;
-use fitting::fit::report::{read_parameters, table, write_files};
-use fitting::fit::run::{run_fit, FitResult, Optimizer};
-use fitting::fit::scatter::scatter;
-use fitting::fit::study_report::{
+use fitting::fit::optimize::run::{run_fit, FitResult, Optimizer};
+use fitting::fit::optimize::trace::HistoryPoint;
+use fitting::fit::reports::report::{read_parameters, table, write_files};
+use fitting::fit::reports::study_report::{
     bootstrap_table, cross_validation_table, write_bootstrap, write_cross_validation,
 };
-use fitting::fit::trace::HistoryPoint;
+use fitting::fit::sets::fit_set::FitSet;
+use fitting::fit::statistics::bootstrap::bootstrap;
+use fitting::fit::statistics::cross_validation::leave_one_group_out;
+use fitting::fit::statistics::scatter::scatter;
 use materials::material::Model;
 use std::path::{Path, PathBuf};
 

@@ -8,9 +8,9 @@
 use crate::charts::fit as fit_charts;
 use crate::cli::fit::validate;
 use anyhow::Result;
-use fitting::fit::fit_set::FitSet;
-use fitting::fit::report::{read_parameters, table, write_files};
-use fitting::fit::run::run_predict;
+use fitting::fit::optimize::run::run_predict;
+use fitting::fit::reports::report::{read_parameters, table, write_files};
+use fitting::fit::sets::fit_set::FitSet;
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]

@@ -6,7 +6,7 @@
 
 use crate::charts::{LineChart, Series};
 use anyhow::{Context, Result};
-use fitting::fit::report::read_parameters;
+use fitting::fit::reports::report::read_parameters;
 use fitting::shpb::signal::interpolate;
 use fitting::shpb_model::scene::ShpbScene;
 use fitting::shpb_model::study::{contact_sensitivity, refinement, relative_rms, Resolution};

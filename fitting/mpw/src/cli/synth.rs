@@ -4,7 +4,7 @@
 //! into `out/synth` (the shipped files are only rewritten when `--out` names them).
 
 use anyhow::{bail, Result};
-use fitting::fit::synth::{write_set, SynthSpec};
+use fitting::fit::synthetic::synth::{write_set, SynthSpec};
 use materials::AnyModel;
 use std::path::PathBuf;
 

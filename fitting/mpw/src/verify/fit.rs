@@ -12,13 +12,13 @@ use crate::verify::data::VerifyData;
 use crate::verify::row::Row;
 use crate::verify::Inputs;
 use anyhow::Result;
-use fitting::fit::cross_validation::{leave_one_group_out, Fold};
-use fitting::fit::fit_set::FitSet;
-use fitting::fit::model::with_values;
-use fitting::fit::mpm_synthetic;
+use fitting::fit::levels::model::with_values;
 use fitting::fit::objective::{JacobianKind, Objective};
+use fitting::fit::optimize::run::{run_fit, Optimizer};
 use fitting::fit::params::ParamSpace;
-use fitting::fit::run::{run_fit, Optimizer};
+use fitting::fit::sets::fit_set::FitSet;
+use fitting::fit::statistics::cross_validation::{leave_one_group_out, Fold};
+use fitting::fit::synthetic::mpm_synthetic;
 use materials::material::Model;
 use std::path::Path;
 

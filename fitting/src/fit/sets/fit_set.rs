@@ -1,17 +1,17 @@
 //! A loaded experiment set: the base material with its fixed overrides, the experiments
 //! as objective blocks at their model level, the free parameters and the stages.
 
-use super::lm::LmOptions;
-use super::model::{with_values, ExperimentModel, Material};
-use super::mpm_shpb::{FaceForces, MpmShpb};
-use super::objective::Block;
-use super::params::FreeParam;
-use super::set_file::{resolve, ExperimentEntry, SetFile, Window};
-use super::shpb_input::face_signals;
-use super::shpb_specimen::ShpbSpecimen;
-use super::single_point::SinglePoint;
-use super::tensile::{Tensile, Thermal};
 use crate::experiment::{load_experiments, Experiment, ShpbExperiment, TensileExperiment};
+use crate::fit::levels::model::{with_values, ExperimentModel, Material};
+use crate::fit::levels::mpm_shpb::{FaceForces, MpmShpb};
+use crate::fit::levels::shpb_input::face_signals;
+use crate::fit::levels::shpb_specimen::ShpbSpecimen;
+use crate::fit::levels::single_point::SinglePoint;
+use crate::fit::levels::tensile::{Tensile, Thermal};
+use crate::fit::objective::Block;
+use crate::fit::optimize::lm::LmOptions;
+use crate::fit::params::FreeParam;
+use crate::fit::sets::set_file::{resolve, ExperimentEntry, SetFile, Window};
 use crate::shpb::{analyze, ShpbAnalysis};
 use crate::shpb_model::{record, Drive, ModelLevel, ModelSettings};
 use anyhow::{anyhow, bail, Context, Result};

@@ -9,8 +9,8 @@
 //! so its force predicts F1 and F2 alike; the two channels are stacked [F1 samples, F2
 //! samples] so that a model with two contact forces (MPM) fits the same objective.
 
-use super::model::Material;
-use super::single_point::Observable;
+use crate::fit::levels::model::Material;
+use crate::fit::levels::single_point::Observable;
 use anyhow::{bail, Result};
 use materials::driver::{LoadPath, Record};
 use materials::preheated::thermal_stretch;

@@ -8,8 +8,8 @@
 //! is below `xtol` (relative to ‖u‖), the scaled gradient ‖Jᵀr‖∞ is below `gtol`, λ
 //! exceeds 1e16, or after `max_iterations`.
 
-use super::objective::{cost, JacobianKind, Objective};
-use super::trace::{HistoryPoint, OptimResult, Recorder};
+use crate::fit::objective::{cost, JacobianKind, Objective};
+use crate::fit::optimize::trace::{HistoryPoint, OptimResult, Recorder};
 use anyhow::Result;
 use nalgebra::{DMatrix, DVector};
 

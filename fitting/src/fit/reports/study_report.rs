@@ -2,10 +2,10 @@
 //! leave-one-group-out cross-validation (`cross_validation.toml`), each as a terminal
 //! table and a TOML file.
 
-use super::bootstrap::Bootstrap;
-use super::cross_validation::Fold;
-use super::fit_set::FitSet;
-use super::report::show;
+use crate::fit::reports::report::show;
+use crate::fit::sets::fit_set::FitSet;
+use crate::fit::statistics::bootstrap::Bootstrap;
+use crate::fit::statistics::cross_validation::Fold;
 use anyhow::Result;
 use serde::Serialize;
 use std::fmt::Write as _;

@@ -42,7 +42,7 @@
 //! catches a contact event that moved by a step; at 1e-2 it is back to 47, 33 and 17 kN
 //! while the curvature error of the mean is still below 0.5 %.
 
-use super::model::{ExperimentModel, Material};
+use crate::fit::levels::model::{ExperimentModel, Material};
 use crate::shpb::pulses::SMOOTHING_S;
 use crate::shpb::signal::{cumulative_integral, interpolate};
 use crate::shpb_model::record::preheated;

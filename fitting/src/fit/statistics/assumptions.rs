@@ -11,7 +11,7 @@
 //! A shift beyond a standard error says that the fitted values carry the choice of κ or μ
 //! more than the noise of the data.
 
-use super::objective::Objective;
+use crate::fit::objective::Objective;
 use crate::shpb_model::CONTACT_CHANGES;
 use anyhow::{Context, Result};
 use nalgebra::{DMatrix, DVector};
@@ -88,10 +88,10 @@ pub fn contact_shifts(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fit::model::{ExperimentModel, Material};
+    use crate::fit::levels::model::{ExperimentModel, Material};
     use crate::fit::objective::Block;
+    use crate::fit::optimize::run::residuals_and_jacobian_in_p;
     use crate::fit::params::{FreeParam, ParamSpace};
-    use crate::fit::run::residuals_and_jacobian_in_p;
     use crate::shpb_model::ContactChange;
     use materials::material::Model;
 

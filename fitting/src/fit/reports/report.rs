@@ -4,12 +4,12 @@
 //! and % of the mean measured magnitude]; and, for synthetic sets, the error against the
 //! truth. Also the CSV of measured against fitted values per experiment.
 
-use super::fit_set::FitSet;
-use super::identifiability;
-use super::model::{with_values, Material};
-use super::objective::Block;
-use super::run::FitResult;
-use super::scatter::scatter;
+use crate::fit::levels::model::{with_values, Material};
+use crate::fit::objective::Block;
+use crate::fit::optimize::run::FitResult;
+use crate::fit::sets::fit_set::FitSet;
+use crate::fit::statistics::identifiability;
+use crate::fit::statistics::scatter::scatter;
 use anyhow::{bail, Context, Result};
 use materials::material::Model;
 use materials::AnyModel;
@@ -34,9 +34,9 @@ struct StageRow {
     parameters: Vec<ParamRow>,
     correlation: Vec<Vec<f64>>,
     /// MPM levels: the fit under the contact penalty κ and friction μ halved and doubled
-    /// (`fit::assumptions`).
+    /// (`fit::statistics::assumptions`).
     contact_assumptions: Vec<ContactRow>,
-    /// Parameter pairs the data do not identify separately (`fit::identifiability`).
+    /// Parameter pairs the data do not identify separately (`fit::statistics::identifiability`).
     not_identified: Vec<String>,
     objective: f64,
     samples: usize,
@@ -76,7 +76,7 @@ struct ExperimentRow {
     metadata_source: Option<String>,
 }
 
-/// A group's specimen scatter and the fit against it (`fit::scatter`).
+/// A group's specimen scatter and the fit against it (`fit::statistics::scatter`).
 #[derive(Serialize)]
 struct GroupRow {
     group: String,
@@ -222,12 +222,13 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
     }
 }
 
-/// Human units for a parameter value: MPa for stresses, plain otherwise.
+/// Human units for a parameter value: MPa for stresses (`materials::parameters`), plain
+/// otherwise.
 pub fn show(name: &str, v: f64) -> String {
-    if name == "A" || name == "B" {
-        format!("{:.2} MPa", v * 1e-6)
-    } else {
-        format!("{v:.5}")
+    let quantity = materials::parameters::parameter(name).map(|p| p.quantity);
+    match quantity {
+        Some(materials::parameters::Quantity::Stress) => format!("{:.2} MPa", v * 1e-6),
+        _ => format!("{v:.5}"),
     }
 }
 

@@ -3,8 +3,8 @@
 //! Stops when the standard deviation of S over the simplex is below `sd_tolerance` or
 //! after `max_iterations`. A failed model run counts as S = +∞ (the point is rejected).
 
-use super::objective::{cost, Objective};
-use super::trace::{HistoryPoint, OptimResult, Recorder};
+use crate::fit::objective::{cost, Objective};
+use crate::fit::optimize::trace::{HistoryPoint, OptimResult, Recorder};
 use anyhow::{anyhow, Result};
 use argmin::core::{CostFunction, Executor, State, TerminationReason, TerminationStatus};
 use argmin::solver::neldermead::NelderMead;

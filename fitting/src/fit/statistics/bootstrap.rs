@@ -12,12 +12,12 @@
 //! that describe the material rather than one specimen. Sample b uses the random stream
 //! `seed`, b: the same numbers whatever the thread count.
 
-use super::fit_set::FitSet;
-use super::model::{with_values, Material};
-use super::objective::{predict, Block, Objective};
-use super::params::ParamSpace;
-use super::run::{refit, statistics};
-use super::scatter::{groups, model_mean, scatter};
+use crate::fit::levels::model::{with_values, Material};
+use crate::fit::objective::{predict, Block, Objective};
+use crate::fit::optimize::run::{refit, statistics};
+use crate::fit::params::ParamSpace;
+use crate::fit::sets::fit_set::FitSet;
+use crate::fit::statistics::scatter::{groups, model_mean, scatter};
 use anyhow::{Context, Result};
 use materials::material::Model;
 use rand::Rng;

@@ -16,11 +16,11 @@
 //! - Noise: Gaussian, standard deviation `noise` × the channel's peak magnitude (stress
 //!   for tensile, each gauge channel for SHPB), from a PCG64 generator seeded by `seed`.
 
-use super::model::ExperimentModel;
-use super::model::Material;
-use super::shpb_specimen::ShpbSpecimen;
-use super::single_point::SinglePoint;
-use super::tensile::{Tensile, Thermal};
+use crate::fit::levels::model::ExperimentModel;
+use crate::fit::levels::model::Material;
+use crate::fit::levels::shpb_specimen::ShpbSpecimen;
+use crate::fit::levels::single_point::SinglePoint;
+use crate::fit::levels::tensile::{Tensile, Thermal};
 use anyhow::{Context, Result};
 use materials::material::Model;
 use rand::{Rng, SeedableRng};
@@ -90,7 +90,7 @@ fn truth_header(spec: &SynthSpec, what: &str) -> String {
     let mut h = String::new();
     let _ = writeln!(
         h,
-        "# synthetic {what}, written by `mpw synth` (fitting::fit::synth)"
+        "# synthetic {what}, written by `mpw synth` (fitting::fit::synthetic::synth)"
     );
     let _ = writeln!(h, "# truth: {} parameters, SI units:", spec.material_name);
     for name in spec.material.param_names() {

@@ -6,14 +6,14 @@
 //! Cov(p) = s² (J_pᵀ J_p)⁻¹, s² = S/(n − P), standard error √Cov_kk, correlation
 //! Cov_kl/√(Cov_kk Cov_ll), with J_p = dr/dp the exact Jacobian at the optimum.
 
-use super::assumptions::{contact_shifts, AssumptionShift};
-use super::fit_set::FitSet;
-use super::lm::{levenberg_marquardt, LmOptions};
-use super::model::{with_values, Material};
-use super::nelder_mead::{nelder_mead, NmOptions};
-use super::objective::{predict, Block, JacobianKind, Objective};
-use super::params::ParamSpace;
-use super::trace::{HistoryPoint, OptimResult};
+use crate::fit::levels::model::{with_values, Material};
+use crate::fit::objective::{predict, Block, JacobianKind, Objective};
+use crate::fit::optimize::lm::{levenberg_marquardt, LmOptions};
+use crate::fit::optimize::nelder_mead::{nelder_mead, NmOptions};
+use crate::fit::optimize::trace::{HistoryPoint, OptimResult};
+use crate::fit::params::ParamSpace;
+use crate::fit::sets::fit_set::FitSet;
+use crate::fit::statistics::assumptions::{contact_shifts, AssumptionShift};
 use anyhow::{bail, Result};
 use materials::material::Model;
 use nalgebra::DMatrix;

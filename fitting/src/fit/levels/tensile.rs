@@ -13,8 +13,8 @@
 //! record point up to the last compared sample, subdivided so that no step exceeds
 //! `MAX_STRAIN_STEP`; noisy strains are made monotone by a running maximum.
 
-use super::model::Material;
-use super::single_point::Observable;
+use crate::fit::levels::model::Material;
+use crate::fit::levels::single_point::Observable;
 use anyhow::{bail, Result};
 use materials::driver::{LoadPath, Ramp, Record, Temperature};
 use materials::limits::LOAD_PATH_STEPS;

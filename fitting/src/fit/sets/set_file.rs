@@ -25,13 +25,13 @@
 //! weight = 1.0                # optional, default 1
 //! level = "single-point"      # model level: "single-point" | "mpm-axisymmetric" |
 //!                             #   "mpm-3d-quarter" | "mpm-3d" (SHPB only: the MPM model with
-//!                             #   friction and inertia, `fit::mpm_shpb`; a 3D level costs
+//!                             #   friction and inertia, `fit::levels::mpm_shpb`; a 3D level costs
 //!                             #   ≈ 30× the axisymmetric one at 20 points along)
 //! layers = 20                 # MPM levels: points along the specimen (default 20)
 //! friction = 0.1              # MPM levels: Coulomb μ at the faces (default 0.1)
 //! shape_function = "cpdi"     # MPM levels: "cpdi" (default) or any other kernel
 //!                             #   (`mpm_core::shape`; "linear" drifts under refinement,
-//!                             #   "ugimp" converges slowly, `fit::mpm_shpb`)
+//!                             #   "ugimp" converges slowly, `fit::levels::mpm_shpb`)
 //! drive = "measured-velocity" # MPM levels: the incident face follows the measured
 //!                             #   v1 − v2 (default), or "incident-pulse": both faces on elastic
 //!                             #   bars, only ε_i drives, the model predicts ε_r and ε_t

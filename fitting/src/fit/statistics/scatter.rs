@@ -14,7 +14,7 @@
 //! beside the mean over records of each record's own RMS [% of its mean stress]. A group of
 //! one record (and every SHPB record) compares on its own samples.
 
-use super::objective::Block;
+use crate::fit::objective::Block;
 
 /// Points of the common strain grid.
 pub const GRID: usize = 50;
@@ -232,8 +232,8 @@ pub fn scatter(blocks: &[&Block], predictions: &[Vec<f64>]) -> Vec<Scatter> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::model::{ExperimentModel, Material};
     use super::*;
+    use crate::fit::levels::model::{ExperimentModel, Material};
 
     /// A stand-in for a model: predicts a fixed curve.
     struct Fixed(Vec<f64>);

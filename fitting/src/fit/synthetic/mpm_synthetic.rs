@@ -14,13 +14,13 @@
 //! for both levels B came out +2.4 % (A −0.5 %); with CPDI, whose domains follow F,
 //! A −0.35 % and B +0.99 %.
 
-use super::lm::{levenberg_marquardt, LmOptions};
-use super::model::{ExperimentModel, Material};
-use super::mpm_shpb::{FaceForces, MpmShpb};
-use super::objective::{Block, JacobianKind, Objective};
-use super::params::{FreeParam, ParamSpace};
-use super::shpb_specimen::ShpbSpecimen;
-use super::single_point::SinglePoint;
+use crate::fit::levels::model::{ExperimentModel, Material};
+use crate::fit::levels::mpm_shpb::{FaceForces, MpmShpb};
+use crate::fit::levels::shpb_specimen::ShpbSpecimen;
+use crate::fit::levels::single_point::SinglePoint;
+use crate::fit::objective::{Block, JacobianKind, Objective};
+use crate::fit::optimize::lm::{levenberg_marquardt, LmOptions};
+use crate::fit::params::{FreeParam, ParamSpace};
 use crate::shpb_model::record::preheated;
 use crate::shpb_model::{Bars, Cylinder, Discretization, Drive, FaceSignals};
 use crate::shpb_model::{ModelLevel, ModelSettings, ShpbModel};

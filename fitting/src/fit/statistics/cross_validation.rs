@@ -5,11 +5,11 @@
 //! on all records, says how well the model carries over to a rate (or temperature) it
 //! has not seen.
 
-use super::fit_set::FitSet;
-use super::model::{with_values, Material};
-use super::objective::{predict, Block};
-use super::run::refit;
-use super::scatter::{groups, scatter, Scatter};
+use crate::fit::levels::model::{with_values, Material};
+use crate::fit::objective::{predict, Block};
+use crate::fit::optimize::run::refit;
+use crate::fit::sets::fit_set::FitSet;
+use crate::fit::statistics::scatter::{groups, scatter, Scatter};
 use anyhow::Result;
 
 /// One fold: the group left out, the parameters fitted without it and its scatter

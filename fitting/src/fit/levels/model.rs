@@ -45,7 +45,7 @@ pub trait ExperimentModel: Send + Sync {
     }
 
     /// This experiment's model with its contact assumptions changed (penalty stiffness κ
-    /// and friction μ, `fit::assumptions`); `None` for a level without contact.
+    /// and friction μ, `fit::statistics::assumptions`); `None` for a level without contact.
     fn with_contact(&self, _change: &ContactChange) -> Result<Option<Box<dyn ExperimentModel>>> {
         Ok(None)
     }

@@ -8,7 +8,7 @@
 //! runs one `Dual64` pass per parameter (kept for the cost comparison in `mpw fit
 //! --compare`).
 
-use super::model::{ExperimentModel, Material};
+use crate::fit::levels::model::{ExperimentModel, Material};
 use anyhow::{anyhow, bail, Context, Result};
 use materials::ad::{eps, seed};
 use materials::driver::{run, LoadPath, Record};
