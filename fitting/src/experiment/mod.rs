@@ -10,6 +10,7 @@ pub mod header;
 pub mod lanl_raw;
 pub mod limits;
 mod pattern;
+pub mod processing;
 mod shpb;
 mod sidecar;
 mod table;

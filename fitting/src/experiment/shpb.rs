@@ -52,11 +52,10 @@
 use super::error::ExperimentError;
 use super::header::{self, Source};
 use super::lanl_raw::RawRecord;
+use super::processing::{Alignment, Processing, SavitzkyGolay};
 use super::sidecar::{ColumnSpec, Sidecar};
 use super::table::CsvTable;
 use super::units::Dimension;
-use crate::shpb::filter::SavitzkyGolay;
-use crate::shpb::{Alignment, Processing};
 use serde::Deserialize;
 use std::f64::consts::PI;
 use std::ops::Range;

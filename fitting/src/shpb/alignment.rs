@@ -13,51 +13,12 @@
 
 use super::gauges::{GaugeSignals, Pulse};
 use super::pulses::PulseWindows;
-use std::str::FromStr;
+pub use crate::experiment::processing::Alignment;
 
 /// Largest shift searched by the force balance [s].
 pub const MAX_SHIFT_S: f64 = 10e-6;
 const COARSE_S: f64 = 0.25e-6;
 const FINE_S: f64 = 0.01e-6;
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Alignment {
-    Geometric,
-    Arrival,
-    ForceBalance,
-}
-
-impl Alignment {
-    pub const ALL: [Alignment; 3] = [
-        Alignment::Geometric,
-        Alignment::Arrival,
-        Alignment::ForceBalance,
-    ];
-}
-
-impl FromStr for Alignment {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "geometric" => Ok(Alignment::Geometric),
-            "arrival" => Ok(Alignment::Arrival),
-            "force-balance" => Ok(Alignment::ForceBalance),
-            other => Err(format!(
-                "\"{other}\": expected \"geometric\" (the default), \"arrival\" or \"force-balance\""
-            )),
-        }
-    }
-}
-
-impl std::fmt::Display for Alignment {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            Alignment::Geometric => "geometric",
-            Alignment::Arrival => "arrival",
-            Alignment::ForceBalance => "force-balance",
-        })
-    }
-}
 
 /// Shifts added to the geometric reads of the reflected and transmitted pulses [s].
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

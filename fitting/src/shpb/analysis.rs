@@ -16,14 +16,15 @@
 //! alignment (`shpb::alignment`) and, if chosen, the dispersion correction
 //! (`shpb::gauges`).
 
-use super::alignment::{self, Alignment, Shifts};
+use super::alignment::{self, Shifts};
 use super::error::ShpbError;
-use super::filter::{polynomial_trend, SavitzkyGolay};
+use super::filter::polynomial_trend;
 use super::gauges::{GaugeSignals, Pulse};
 use super::plateau::Plateau;
 use super::pulses::{detect_pulses, smoothing_width, PulseWindows};
 use super::signal::{cumulative_integral, mean_std, moving_average};
 use crate::experiment::limits::SIGNAL_SAMPLES;
+pub use crate::experiment::processing::Processing;
 use crate::experiment::ShpbExperiment;
 use std::path::Path;
 
@@ -66,40 +67,6 @@ pub struct ShpbAnalysis {
     pub processing: Processing,
     pub shifts: Shifts,
     pub plateau: Plateau,
-}
-
-/// How the pulses are moved from the gauges to the specimen faces.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Processing {
-    pub alignment: Alignment,
-    /// Pochhammer-Chree dispersion correction over the gauge distances.
-    pub dispersion: bool,
-    /// Savitzky-Golay filter of both gauge records, before any other step.
-    pub filter: Option<SavitzkyGolay>,
-}
-
-impl Default for Processing {
-    /// Geometric alignment, no dispersion correction.
-    fn default() -> Processing {
-        Processing {
-            alignment: Alignment::Geometric,
-            dispersion: false,
-            filter: None,
-        }
-    }
-}
-
-impl std::fmt::Display for Processing {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}", self.alignment)?;
-        if self.dispersion {
-            f.write_str(" + dispersion")?;
-        }
-        match self.filter {
-            Some(sg) => write!(f, " + SG {}/{}", sg.window, sg.order),
-            None => Ok(()),
-        }
-    }
 }
 
 /// Process the raw record as its TOML asks (`ShpbExperiment::processing`).

@@ -5,26 +5,11 @@
 //! window), which smooths noise while keeping peaks and edges that a moving average of
 //! the same width flattens.
 
+pub use crate::experiment::processing::SavitzkyGolay;
 use nalgebra::DMatrix;
 
-/// A Savitzky-Golay filter: `window` samples (odd), polynomial `order` (< window).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct SavitzkyGolay {
-    pub window: usize,
-    pub order: usize,
-}
-
+/// The Savitzky-Golay filter a record asks for (`experiment::processing`), applied here.
 impl SavitzkyGolay {
-    /// The filter, if `window` is odd and larger than `order`.
-    pub fn new(window: usize, order: usize) -> Result<SavitzkyGolay, String> {
-        if window % 2 == 0 || window <= order {
-            return Err(format!(
-                "window {window}, order {order}: expected an odd window of more samples than the order"
-            ));
-        }
-        Ok(SavitzkyGolay { window, order })
-    }
-
     /// `values` filtered; a record shorter than the window is fitted as one window.
     pub fn apply(&self, values: &[f64]) -> Vec<f64> {
         let n = values.len();

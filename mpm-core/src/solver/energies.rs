@@ -1,5 +1,5 @@
 //! Energy bookkeeping and the conserved measures the checks and outputs read: kinetic
-//! energy, momentum, per-body measures. Sums are in a fixed order (module `sum`), so they
+//! energy, momentum, per-body measures. Sums are in a fixed order (`parallel::fixed_sum`), so they
 //! do not depend on the thread count.
 
 use super::Solver;

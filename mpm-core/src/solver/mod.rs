@@ -486,8 +486,9 @@ mod tests {
     }
 
     /// 200 steps on 1, 2 and 4 threads, bit for bit, with the pool cold and warm
-    /// (`warm`): a model below `parallel::LARGE_MODEL_FROM` points (in a cold pool only
-    /// its material update is split) and one above it (every loop split).
+    /// (`parallel::with_warm_pool`): a model below `parallel::LARGE_MODEL_FROM` points
+    /// (in a cold pool only its material update is split) and one above it (every loop
+    /// split).
     #[test]
     fn results_do_not_depend_on_the_thread_count() {
         for (spacing, split) in [(0.05, false), (0.0345, true)] {
