@@ -201,6 +201,27 @@ fn shpb_bridge_volts_and_wave_speed_convert_to_si() {
     assert!((e.bar.wave_speed_m_per_s() - 5000.0).abs() < 1e-9);
 }
 
+/// A specimen not narrower than the bar (a unit written wrong: "8 m" for "8 mm") is
+/// refused at reading, at its key and line, instead of giving a plateau stress of 0 MPa.
+#[test]
+fn a_specimen_as_wide_as_the_bar_is_refused_at_its_key() {
+    let csv = "t_us,inc_v,tr_ue\n0,-100,-50\n1,200,25\n";
+    for (test, specimen) in [("wide_m", "\"8 m\""), ("wide_equal", "\"20 mm\"")] {
+        let toml = SHPB_TOML.replace(
+            "[specimen]\ndiameter = \"8 mm\"",
+            &format!("[specimen]\ndiameter = {specimen}"),
+        );
+        let dir = folder(test, &[("s.csv", csv), ("s.toml", &toml)]);
+        let e = ShpbExperiment::load(&dir.join("s.toml")).unwrap_err();
+        assert!(
+            matches!(&e, ExperimentError::InvalidValue { at, key, problem } if at.line == 15 && key == "specimen.diameter" && problem.contains("not smaller than the bar")),
+            "{e}"
+        );
+    }
+    let dir = folder("narrow", &[("s.csv", csv), ("s.toml", SHPB_TOML)]);
+    assert!(ShpbExperiment::load(&dir.join("s.toml")).is_ok());
+}
+
 #[test]
 fn shpb_volts_without_bridge_is_an_error() {
     let toml = SHPB_TOML.replace(", excitation = \"10 V\"", "");

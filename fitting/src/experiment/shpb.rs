@@ -257,6 +257,19 @@ impl Specimen {
     pub fn area_m2(&self) -> f64 {
         PI * self.diameter_m * self.diameter_m / 4.0
     }
+
+    /// What is wrong when the specimen is not narrower than `bar`: it sits between the
+    /// bar faces, and the stress σ = E_b A_b ε_t / A_s of a specimen as wide as the bar or
+    /// wider is a sign of a unit written wrong ("8 m" for "8 mm").
+    pub fn too_wide_for(&self, bar: &Bar) -> Option<String> {
+        let (d, bar_d) = (self.diameter_m, bar.diameter_m);
+        (d >= bar_d).then(|| {
+            format!(
+                "{d:e} m is not smaller than the bar diameter {bar_d:e} m: the specimen sits \
+                 between the bar faces (a unit written wrong, e.g. \"8 m\" for \"8 mm\"?)"
+            )
+        })
+    }
 }
 
 /// An SHPB record in SI units, strains compression negative.
@@ -326,6 +339,10 @@ impl ShpbExperiment {
             )?,
             length_m: meta.required("specimen.length", &spec.specimen.length, Dimension::Length)?,
         };
+        if let Some(problem) = specimen.too_wide_for(&bar) {
+            let span = spec.specimen.diameter.as_ref().map_or(0..0, |d| d.span());
+            return Err(sidecar.invalid("specimen.diameter", span, problem));
+        }
         let time_s = sidecar.column(&table, "columns.time", &spec.columns.time, Dimension::Time)?;
         sidecar.check_time_increases(&table, &spec.columns.time, &time_s)?;
         let flip = |v: Vec<f64>| -> Vec<f64> { v.into_iter().map(|x| sign * x).collect() };
