@@ -436,6 +436,36 @@ fn shipped_experiment_files_load() {
     assert_eq!(count, 10);
 }
 
+/// A stress column in MPa declared "Pa" never reaches 1 MPa: refused at reading, naming
+/// the CSV, the row of its largest value and the column, instead of a fit that runs into
+/// its bounds.
+#[test]
+fn a_stress_column_below_one_mpa_is_refused_as_a_unit_mistake() {
+    let toml = |unit: &str| {
+        format!(
+            "kind = \"tensile\"\ndata = \"t.csv\"\ntemperature = \"20 degC\"\nnominal_strain_rate = \"1 1/s\"\n\
+             [columns]\ntime = {{ name = \"time_s\", unit = \"s\" }}\nstrain = {{ name = \"strain\", unit = \"1\" }}\n\
+             stress = {{ name = \"stress\", unit = \"{unit}\" }}\n"
+        )
+    };
+    let csv = "time_s,strain,stress\n0,0,0\n1,0.01,420\n2,0.02,515\n3,0.03,498\n";
+    let load = |test: &str, unit: &str| {
+        let dir = folder(test, &[("t.csv", csv), ("t.toml", &toml(unit))]);
+        TensileExperiment::load(&dir.join("t.toml"))
+    };
+    let e = load("mpa-as-pa", "Pa").unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::Implausible { line: 4, column: 3, name, .. } if name == "stress"),
+        "{e}"
+    );
+    let msg = e.to_string();
+    assert!(
+        msg.contains("t.csv") && msg.contains("515 Pa") && msg.contains("MPa declared as"),
+        "{msg}"
+    );
+    assert!(load("mpa", "MPa").is_ok());
+}
+
 /// A value beyond the plausible range of its dimension names the row, the value as
 /// written and the likely mistake: a stress of 2e9 "MPa" (Pa declared as MPa),
 /// a strain of 6 (600 %), and forces in kN declared as "MN" (10 MN over a 10 mm diameter

@@ -196,7 +196,40 @@ impl Sidecar {
         let (limit, likely) = dimension.plausible_magnitude();
         let how = format!("in SI units, {likely}");
         self.check_plausible(table, spec, (&values, unit), &si, limit, &how)?;
+        if let Some((floor, likely)) = dimension.plausible_peak() {
+            self.check_peak(table, spec, (&values, unit), &si, floor, likely)?;
+        }
         Ok(si)
+    }
+
+    /// Check that column `spec` (its values as written in `unit`, and `si`) reaches the
+    /// peak magnitude `floor` [SI] somewhere (`Dimension::plausible_peak`).
+    fn check_peak(
+        &self,
+        table: &CsvTable,
+        spec: &ColumnSpec,
+        (written, unit): (&[f64], &str),
+        si: &[f64],
+        floor: f64,
+        likely: &str,
+    ) -> Result<(), ExperimentError> {
+        let peak = (0..si.len()).max_by(|&a, &b| si[a].abs().total_cmp(&si[b].abs()));
+        match peak {
+            Some(i) if si[i].abs() < floor => {
+                let name = spec.name.get_ref().clone();
+                Err(ExperimentError::Implausible {
+                    file: table.file.clone(),
+                    line: table.line_of(i),
+                    column: table.position(&name).unwrap_or(0),
+                    name,
+                    problem: format!(
+                        "the column's largest value, {} {unit} ({:e} in SI units), is {likely}",
+                        written[i], si[i]
+                    ),
+                })
+            }
+            _ => Ok(()),
+        }
     }
 
     /// Check `derived` [SI], computed row by row from column `spec` (its values and their

@@ -132,6 +132,20 @@ impl Dimension {
         }
     }
 
+    /// The smallest peak magnitude [SI] that a whole measured column of this dimension
+    /// reaches in a test of metals, and the likely mistake behind a smaller one; `None`
+    /// where no such floor holds. A stress column that never reaches 1 MPa has not seen a
+    /// metal yield.
+    pub fn plausible_peak(self) -> Option<(f64, &'static str)> {
+        match self {
+            Dimension::Stress => Some((
+                1e6,
+                "below 1 MPa, where no metal yields: is a column in MPa declared as \"Pa\"?",
+            )),
+            _ => None,
+        }
+    }
+
     /// `(scale, offset)` of `unit`, or `None` if this dimension has no such unit.
     pub fn to_si(self, unit: &str) -> Option<UnitConversion> {
         self.table()
