@@ -5,7 +5,7 @@ use clap::{Parser, Subcommand};
 #[derive(Parser)]
 #[command(
     name = "mpw",
-    version,
+    version = concat!(env!("CARGO_PKG_VERSION"), " (", env!("MPW_COMMIT"), ")"),
     about = "Johnson-Cook parameters you can trust: material models, single-point driver, MPM, fitting"
 )]
 struct Cli {
@@ -25,7 +25,7 @@ enum Command {
     Shpb(mpw::cli::shpb::Args),
     /// Fit Johnson-Cook parameters to an experiment set (default: the synthetic 42CrMo4 set).
     Fit(mpw::cli::fit::Args),
-    /// Write a Johnson-Cook card for another code (Abaqus, JSON) in a stated unit system.
+    /// Write a Johnson-Cook card for another code (Abaqus, LS-DYNA, JSON) in a stated unit system.
     Export(mpw::cli::export::Args),
     /// Evaluate an experiment set with given parameters (fit report or material file), no optimizer.
     Predict(mpw::cli::predict::Args),
@@ -37,6 +37,11 @@ enum Command {
     BenchMpm(mpw::cli::bench_mpm::Args),
     /// Every shape function on the truss and the Taylor bar: error against wall time.
     Kernels(mpw::cli::kernels::Args),
+    /// Print the shell completions of mpw (source them, or save them where the shell looks).
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
 }
 
 fn main() {
@@ -98,5 +103,10 @@ fn dispatch(command: Command) -> anyhow::Result<()> {
         Command::Simulate(a) => mpw::cli::simulate::run(a),
         Command::BenchMpm(a) => mpw::cli::bench_mpm::run(a),
         Command::Kernels(a) => mpw::cli::kernels::run(a),
+        Command::Completions { shell } => {
+            let mut cli = <Cli as clap::CommandFactory>::command();
+            clap_complete::generate(shell, &mut cli, "mpw", &mut std::io::stdout());
+            Ok(())
+        }
     }
 }
