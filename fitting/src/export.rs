@@ -156,8 +156,12 @@ fn header(out: &mut String, comment: &str, source: &str, units: &Units) {
 struct Num(f64);
 
 impl std::fmt::Display for Num {
+    /// The shortest form of the value rounded to 15 significant digits: a unit conversion
+    /// leaves a rounding residue in the 16th (7850 kg/m³ in t/mm³ is 7.849999999999999e-9),
+    /// far below any material constant's precision.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{:?}", self.0)
+        let rounded: f64 = format!("{:.14e}", self.0).parse().unwrap_or(self.0);
+        write!(f, "{rounded:?}")
     }
 }
 

@@ -125,6 +125,33 @@ fn json_card_reads_back_with_units() {
     }
 }
 
+/// A unit conversion's rounding residue does not reach the card: 7850 kg/m³ in t/mm³ is
+/// written 7.85e-9, not 7.849999999999999e-9, in every shipped material and unit system.
+#[test]
+fn converted_values_are_written_without_rounding_residue() {
+    for file in [
+        "aisi_4340.toml",
+        "ss304l.toml",
+        "steel_945.toml",
+        "ofhc_copper.toml",
+    ] {
+        let m = material(file);
+        for u in UNIT_SYSTEMS {
+            for card in [
+                abaqus(&m, "X", "test", &u).unwrap(),
+                json(&m, "X", "test", &u).unwrap(),
+            ] {
+                let residue = card
+                    .split(|c: char| !(c.is_ascii_digit() || c == '.'))
+                    .any(|word| word.contains("99999999") || word.contains("00000001"));
+                assert!(!residue, "{file} in {}:\n{card}", u.name);
+            }
+        }
+    }
+    let card = abaqus(&material("42crmo4_qt660.toml"), "X", "test", &UNIT_SYSTEMS[1]).unwrap();
+    assert!(card.contains("*DENSITY\n 7.85e-9,"), "{card}");
+}
+
 #[test]
 fn known_values_in_the_mm_unit_systems() {
     // Hand conversion of the 304L file: E 193 GPa = 193000 MPa, ρ 7900 kg/m³ =
