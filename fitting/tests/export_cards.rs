@@ -148,7 +148,13 @@ fn converted_values_are_written_without_rounding_residue() {
             }
         }
     }
-    let card = abaqus(&material("42crmo4_qt660.toml"), "X", "test", &UNIT_SYSTEMS[1]).unwrap();
+    let card = abaqus(
+        &material("42crmo4_qt660.toml"),
+        "X",
+        "test",
+        &UNIT_SYSTEMS[1],
+    )
+    .unwrap();
     assert!(card.contains("*DENSITY\n 7.85e-9,"), "{card}");
 }
 

@@ -215,19 +215,10 @@ impl Sidecar {
     ) -> Result<(), ExperimentError> {
         let peak = (0..si.len()).max_by(|&a, &b| si[a].abs().total_cmp(&si[b].abs()));
         match peak {
-            Some(i) if si[i].abs() < floor => {
-                let name = spec.name.get_ref().clone();
-                Err(ExperimentError::Implausible {
-                    file: table.file.clone(),
-                    line: table.line_of(i),
-                    column: table.position(&name).unwrap_or(0),
-                    name,
-                    problem: format!(
-                        "the column's largest value, {} {unit} ({:e} in SI units), is {likely}",
-                        written[i], si[i]
-                    ),
-                })
-            }
+            Some(i) if si[i].abs() < floor => Err(implausible(table, spec, i, {
+                let (value, in_si) = (written[i], si[i]);
+                format!("the column's largest value, {value} {unit} ({in_si:e} in SI units), is {likely}")
+            })),
             _ => Ok(()),
         }
     }
@@ -247,19 +238,12 @@ impl Sidecar {
     ) -> Result<(), ExperimentError> {
         match derived.iter().position(|v| v.abs() > limit) {
             None => Ok(()),
-            Some(i) => {
-                let name = spec.name.get_ref().clone();
-                Err(ExperimentError::Implausible {
-                    file: table.file.clone(),
-                    line: table.line_of(i),
-                    column: table.position(&name).unwrap_or(0),
-                    name,
-                    problem: format!(
-                        "{} {unit} is implausible ({:e} {how})",
-                        written[i], derived[i]
-                    ),
-                })
-            }
+            Some(i) => Err(implausible(table, spec, i, {
+                format!(
+                    "{} {unit} is implausible ({:e} {how})",
+                    written[i], derived[i]
+                )
+            })),
         }
     }
 
@@ -329,4 +313,21 @@ impl Sidecar {
 #[derive(Deserialize)]
 pub(crate) struct KindOnly {
     pub kind: Spanned<String>,
+}
+
+/// Row `row` of column `spec` of `table` is implausible: `problem` says why.
+fn implausible(
+    table: &CsvTable,
+    spec: &ColumnSpec,
+    row: usize,
+    problem: String,
+) -> ExperimentError {
+    let name = spec.name.get_ref().clone();
+    ExperimentError::Implausible {
+        file: table.file.clone(),
+        line: table.line_of(row),
+        column: table.position(&name).unwrap_or(0),
+        name,
+        problem,
+    }
 }
