@@ -40,8 +40,6 @@ pub struct Parameter {
     pub quantity: Quantity,
     /// What a parameter file may give it.
     pub accepted: Range,
-    /// What it is, for references and messages.
-    pub meaning: &'static str,
 }
 
 const fn entry(
@@ -49,14 +47,12 @@ const fn entry(
     section: &'static str,
     quantity: Quantity,
     accepted: Range,
-    meaning: &'static str,
 ) -> Parameter {
     Parameter {
         name,
         section,
         quantity,
         accepted,
-        meaning,
     }
 }
 
@@ -74,15 +70,8 @@ pub const TABLE: [Parameter; 18] = [
             1e12,
             "a metal's E in Pa, e.g. 210e9 for steel (GPa or MPa given?)",
         ),
-        "Young's modulus",
     ),
-    entry(
-        "nu",
-        "elastic",
-        Dimensionless,
-        Range::open(-1.0, 0.5),
-        "Poisson's ratio",
-    ),
+    entry("nu", "elastic", Dimensionless, Range::open(-1.0, 0.5)),
     entry(
         "rho",
         "elastic",
@@ -92,36 +81,11 @@ pub const TABLE: [Parameter; 18] = [
             25e3,
             "a metal's density in kg/m^3, e.g. 7850 for steel (g/cm^3 given?)",
         ),
-        "reference density",
     ),
-    entry(
-        "tau0",
-        "voce",
-        Stress,
-        Range::positive(),
-        "initial yield stress (Kirchhoff)",
-    ),
-    entry(
-        "tau_inf",
-        "voce",
-        Stress,
-        Range::positive(),
-        "saturation yield stress",
-    ),
-    entry(
-        "eta",
-        "voce",
-        Dimensionless,
-        Range::non_negative(),
-        "saturation exponent",
-    ),
-    entry(
-        "h",
-        "voce",
-        Stress,
-        Range::non_negative(),
-        "linear hardening modulus",
-    ),
+    entry("tau0", "voce", Stress, Range::positive()),
+    entry("tau_inf", "voce", Stress, Range::positive()),
+    entry("eta", "voce", Dimensionless, Range::non_negative()),
+    entry("h", "voce", Stress, Range::non_negative()),
     entry(
         "A",
         "johnson_cook",
@@ -131,7 +95,6 @@ pub const TABLE: [Parameter; 18] = [
             1e10,
             "a yield stress in Pa, e.g. 8e8 for 800 MPa (MPa given?)",
         ),
-        "yield stress (eq. 4.52)",
     ),
     entry(
         "B",
@@ -142,70 +105,25 @@ pub const TABLE: [Parameter; 18] = [
             1e10,
             "a hardening modulus in Pa, e.g. 5e8 for 500 MPa (MPa given?)",
         ),
-        "hardening modulus",
     ),
-    entry(
-        "N",
-        "johnson_cook",
-        Dimensionless,
-        Range::open(0.0, 5.0),
-        "hardening exponent",
-    ),
-    entry(
-        "C",
-        "johnson_cook",
-        Dimensionless,
-        Range::non_negative(),
-        "strain-rate coefficient",
-    ),
-    entry(
-        "M",
-        "johnson_cook",
-        Dimensionless,
-        Range::positive(),
-        "thermal-softening exponent",
-    ),
-    entry(
-        "alpha_dot0",
-        "johnson_cook",
-        Rate,
-        Range::positive(),
-        "reference plastic strain rate",
-    ),
-    entry(
-        "theta_m",
-        "johnson_cook",
-        Temperature,
-        Range::positive(),
-        "melting temperature (above theta0)",
-    ),
-    entry(
-        "theta0",
-        "thermal",
-        Temperature,
-        Range::positive(),
-        "reference (room) temperature",
-    ),
-    entry(
-        "c_theta",
-        "thermal",
-        SpecificHeat,
-        Range::positive(),
-        "specific heat",
-    ),
+    entry("N", "johnson_cook", Dimensionless, Range::open(0.0, 5.0)),
+    entry("C", "johnson_cook", Dimensionless, Range::non_negative()),
+    entry("M", "johnson_cook", Dimensionless, Range::positive()),
+    entry("alpha_dot0", "johnson_cook", Rate, Range::positive()),
+    entry("theta_m", "johnson_cook", Temperature, Range::positive()),
+    entry("theta0", "thermal", Temperature, Range::positive()),
+    entry("c_theta", "thermal", SpecificHeat, Range::positive()),
     entry(
         "alpha_sigma",
         "thermal",
         ThermalExpansion,
         Range::non_negative(),
-        "linear thermal expansion coefficient",
     ),
     entry(
         "gamma_tq",
         "thermal",
         Dimensionless,
         Range::closed(0.0, 1.0),
-        "Taylor-Quinney coefficient (share of plastic work heating)",
     ),
 ];
 

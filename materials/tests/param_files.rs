@@ -153,3 +153,26 @@ fn unreadable_file_names_path_and_reason_once() {
     );
     assert!(std::error::Error::source(&err).is_none(), "{message}");
 }
+
+/// The parameter table says in which section of a file each parameter stands: a
+/// Johnson-Cook file written from the table alone (every elastic, johnson_cook and
+/// thermal entry in its section, with 42CrMo4's values) reads back the same material.
+#[test]
+fn a_file_written_from_the_parameter_table_reads_back() {
+    use materials::parameters::TABLE;
+    let m = load_material(data_dir().join("42crmo4_qt660.toml"))
+        .unwrap()
+        .model;
+    let mut text = String::from("name = \"from the table\"\nmodel = \"johnson-cook\"\n");
+    for section in ["elastic", "johnson_cook", "thermal"] {
+        text += &format!("[{section}]\n");
+        for p in TABLE.iter().filter(|p| p.section == section) {
+            let value = m.param(p.name).unwrap_or_else(|| panic!("no {}", p.name));
+            text += &format!("{} = {value:e}\n", p.name);
+        }
+    }
+    let back = parse_material(&text, Path::new("table.toml")).unwrap_or_else(|e| panic!("{e}"));
+    for p in TABLE.iter().filter(|p| p.section != "voce") {
+        assert_eq!(back.model.param(p.name), m.param(p.name), "{}", p.name);
+    }
+}

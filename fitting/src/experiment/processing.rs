@@ -54,7 +54,7 @@ pub struct SavitzkyGolay {
 impl SavitzkyGolay {
     /// The filter, if `window` is odd and larger than `order`.
     pub fn new(window: usize, order: usize) -> Result<SavitzkyGolay, String> {
-        if window % 2 == 0 || window <= order {
+        if window.is_multiple_of(2) || window <= order {
             return Err(format!(
                 "window {window}, order {order}: expected an odd window of more samples than the order"
             ));

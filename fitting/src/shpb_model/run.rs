@@ -4,6 +4,7 @@
 use super::{Discretized, Drive, ShpbModel, INCIDENT, SPECIMEN, TRANSMITTER};
 use crate::shpb::signal::interpolate;
 use materials::Material;
+use mpm_core::parallel::LARGE_MODEL_FROM;
 use mpm_core::solver::observer::{observe_all, Observer, Verdict};
 use mpm_core::solver::RigidContact;
 use mpm_core::{Solver, Template};
@@ -40,14 +41,6 @@ pub struct ShpbRun {
     pub wall_s: f64,
 }
 
-// A run among others (`run_until`: a fit's evaluation) of a large model
-// (`mpm_core::parallel::LARGE_MODEL_FROM` points or more, e.g. the 3D quarter at 40 points
-// along, 51 720) uses the caller's thread pool; a smaller model runs on one thread, and a
-// fit runs its models side by side. A run alone (`run_observed`: `mpw simulate`) always
-// uses the caller's pool, warm. The results do not depend on it (mpm-core's loops give
-// the same bits on any thread count).
-use mpm_core::parallel::LARGE_MODEL_FROM;
-
 /// `run` on one thread, inside its own pool: a model of a few thousand points runs the
 /// parallel loops of a step inline instead of waking threads.
 fn one_thread(run: impl FnOnce() -> anyhow::Result<ShpbRun> + Send) -> anyhow::Result<ShpbRun> {
@@ -81,8 +74,12 @@ impl ShpbModel {
     }
 
     /// Run the model with `material` from t = 0 to `end` [s] (at most the signals' end), as
-    /// one of several run side by side (a small model on one thread, `LARGE_MODEL_FROM`): the
-    /// run is explicit, so its history up to `end` is that of the whole run.
+    /// one of several run side by side (a fit's evaluation): a large model
+    /// (`LARGE_MODEL_FROM` points or more, e.g. the 3D quarter at 40 points along, 51 720)
+    /// uses the caller's pool, a smaller one runs on one thread. A run alone
+    /// (`run_observed`: `mpw simulate`) always uses the caller's pool. The results are the
+    /// same either way; the run is explicit, so its history up to `end` is that of the
+    /// whole run.
     pub fn run_until(&self, material: Arc<dyn Material>, end: f64) -> anyhow::Result<ShpbRun> {
         let run = || self.run_observed(material, end, &mut []);
         match self.particles() < LARGE_MODEL_FROM {

@@ -22,9 +22,9 @@ fn within_slurm(os: usize, slurm: Option<&str>) -> usize {
     task.filter(|&n| n > 0).map_or(os, |n| n.min(os)).max(1)
 }
 
-/// The threads that may work on one loop at once: the current rayon pool's threads (1
-/// outside a pool's worker, where rayon would use the global pool), no more than `cpus`.
-pub fn workers() -> usize {
+/// The threads that may work on one loop at once: the current rayon pool's threads (the
+/// global pool's outside a pool), no more than `cpus`.
+pub(super) fn workers() -> usize {
     rayon::current_num_threads().min(cpus()).max(1)
 }
 

@@ -26,10 +26,8 @@ mod fold;
 mod share;
 mod team;
 
-pub use cpus::{cpus, workers};
-pub use cut::{
-    light, Cut, LARGE_MODEL_FROM, LIGHT_PIECE, MATERIAL, MATERIAL_PIECE, WARM_LIGHT_PARALLEL_FROM,
-};
+pub use cpus::cpus;
+pub use cut::{light, Cut, LARGE_MODEL_FROM, MATERIAL, MATERIAL_PIECE};
 pub use fold::{filter_map, fixed_sum, fold, for_each, map};
 pub use team::{is_warm, with_warm_pool};
 

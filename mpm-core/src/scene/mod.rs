@@ -98,6 +98,11 @@ fn describe<const D: usize>(s: &Solver<D>) -> Vec<String> {
             .iter()
             .map(|bc| format!("velocity condition: {bc}")),
     );
+    lines.extend(
+        s.conditions
+            .iter()
+            .map(|c| format!("point condition: {}", c.describe())),
+    );
     lines.extend(s.rigid.iter().map(|r| {
         format!(
             "rigid body {}: penalty {:e} N/m, friction {}",
@@ -233,6 +238,32 @@ mod tests {
                 "../materials/",
                 &format!("{}/", scenes().join("../materials").display()),
             )
+    }
+
+    /// Springs of a scene file are registered as point conditions and named in the run
+    /// log with their points, directions and stiffness.
+    #[test]
+    fn springs_are_registered_and_described() {
+        let dir = std::env::temp_dir().join(format!("mpw_scene_springs-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("springs.toml");
+        let springs = "\n[[springs]]\nregion = { min = [0.0, 0.0], max = [1.0, 1e-3] }\n\
+                       directions = [\"y\"]\nstiffness = 1e9\n";
+        std::fs::write(&path, axisymmetric_taylor_text() + springs).unwrap();
+        let scene = load(&path).unwrap();
+        let Simulation::Planar(s) = &scene.simulation else {
+            panic!("the Taylor scene is axisymmetric")
+        };
+        assert_eq!(s.conditions.len(), 1);
+        assert_eq!(s.conditions[0].stiffness(), 1e9);
+        let log = scene.describe();
+        let line = log
+            .iter()
+            .find(|l| l.starts_with("point condition: springs on "));
+        assert!(
+            line.is_some_and(|l| l.ends_with("points along y, κ = 1e9 N/m")),
+            "{log:?}"
+        );
     }
 
     #[test]

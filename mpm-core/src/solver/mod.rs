@@ -23,7 +23,7 @@ mod surface_loads;
 pub mod time_step;
 
 pub use energies::Energies;
-pub use scheme::{unmet_reads, Data, Scheme, Stage};
+pub use scheme::{Data, Scheme, Stage};
 pub use settings::Settings;
 pub use time_step::{TimeStep, TimeStepChange};
 

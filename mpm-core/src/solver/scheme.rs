@@ -258,23 +258,6 @@ impl Scheme {
     }
 }
 
-/// The reads of `stages` (one step) of data made within the step that no earlier stage
-/// of the step wrote: empty for a step that keeps the contract.
-pub fn unmet_reads(stages: &[Stage]) -> Vec<(Stage, Data)> {
-    let mut written: Vec<Data> = vec![];
-    let mut unmet = vec![];
-    for &stage in stages {
-        let made_here = stage.reads().iter().filter(|d| d.within_step());
-        unmet.extend(
-            made_here
-                .filter(|d| !written.contains(d))
-                .map(|&d| (stage, d)),
-        );
-        written.extend(stage.writes());
-    }
-    unmet
-}
-
 impl fmt::Display for Stage {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
@@ -317,6 +300,23 @@ impl fmt::Display for Scheme {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The reads of `stages` (one step) of data made within the step that no earlier stage
+    /// of the step wrote: empty for a step that keeps the contract.
+    fn unmet_reads(stages: &[Stage]) -> Vec<(Stage, Data)> {
+        let mut written: Vec<Data> = vec![];
+        let mut unmet = vec![];
+        for &stage in stages {
+            let made_here = stage.reads().iter().filter(|d| d.within_step());
+            unmet.extend(
+                made_here
+                    .filter(|d| !written.contains(d))
+                    .map(|&d| (stage, d)),
+            );
+            written.extend(stage.writes());
+        }
+        unmet
+    }
 
     /// Every scheme maps mass before it solves, updates the velocity and the stress
     /// exactly once, and ends by moving the points, advancing time and checking.
