@@ -137,18 +137,68 @@ pub fn value(m: &Material, name: &str, units: &Units) -> Result<(f64, &'static s
     Ok((si * factor, unit))
 }
 
-fn header(out: &mut String, comment: &str, source: &str, units: &Units) {
-    let _ = writeln!(
+/// Where a card's parameters come from: a sentence naming the files, and the caveats a
+/// user of the card must read (the ranges a fit covered, what it did not identify).
+#[derive(Debug, Clone, Default)]
+pub struct Provenance {
+    pub source: String,
+    pub caveats: Vec<String>,
+}
+
+impl Provenance {
+    /// Parameters from `source` alone, without caveats.
+    pub fn named(source: &str) -> Provenance {
+        Provenance {
+            source: source.to_string(),
+            caveats: Vec::new(),
+        }
+    }
+}
+
+/// Longest comment line of a card, the comment mark included: fixed-format readers
+/// (LS-DYNA's 80 columns) and editors show no more.
+pub const COMMENT_WIDTH: usize = 80;
+
+/// `text` as comment lines of at most `COMMENT_WIDTH` characters, broken between words;
+/// continuation lines are indented by two spaces.
+fn comment(out: &mut String, mark: &str, text: &str) {
+    let mut line = String::from(mark);
+    for word in text.split_whitespace() {
+        let fresh = line.trim_end() == mark;
+        if !fresh && line.chars().count() + 1 + word.chars().count() > COMMENT_WIDTH {
+            let _ = writeln!(out, "{line}");
+            line = format!("{mark}  ");
+        }
+        if !line.ends_with(' ') {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    let _ = writeln!(out, "{line}");
+}
+
+fn header(out: &mut String, mark: &str, about: &Provenance, units: &Units) {
+    let version = env!("CARGO_PKG_VERSION");
+    comment(
         out,
-        "{comment} Johnson-Cook parameters of {source}, written by mpw {}",
-        env!("CARGO_PKG_VERSION")
+        mark,
+        &format!(
+            "Johnson-Cook parameters of {}, written by mpw {version}",
+            about.source
+        ),
     );
-    let _ = writeln!(
+    for caveat in &about.caveats {
+        comment(out, mark, caveat);
+    }
+    comment(
         out,
-        "{comment} units: {} ({}); temperatures in K",
-        units.description, units.name
+        mark,
+        &format!(
+            "units: {} ({}); temperatures in K",
+            units.description, units.name
+        ),
     );
-    let _ = writeln!(out, "{comment} yield stress: mpw fits a Kirchhoff stress, the code reads it as Cauchy (they differ by the elastic volume change, 0.6 % at 1 GPa pressure in steel)");
+    comment(out, mark, "yield stress: mpw fits a Kirchhoff stress, the code reads it as Cauchy (they differ by the elastic volume change, 0.6 % at 1 GPa pressure in steel)");
 }
 
 /// A number as it round-trips, always with a decimal point or an exponent (`193000.0`,
@@ -166,10 +216,11 @@ impl std::fmt::Display for Num {
 }
 
 /// An Abaqus material block named `name`.
-pub fn abaqus(m: &Material, name: &str, source: &str, units: &Units) -> Result<String> {
+pub fn abaqus(m: &Material, name: &str, about: &Provenance, units: &Units) -> Result<String> {
     let v = |n: &str| value(m, n, units).map(|(x, _)| Num(x));
     let mut out = String::new();
-    header(&mut out, "**", source, units);
+    header(&mut out, "**", about, units);
+    comment(&mut out, "**", "adiabatic heating (*INELASTIC HEAT FRACTION) acts only in an adiabatic step (*DYNAMIC, EXPLICIT, ADIABATIC; *STATIC or *DYNAMIC with ADIABATIC) or a coupled temperature-displacement step; elsewhere the temperature stays at its initial value");
     let _ = writeln!(out, "*MATERIAL, NAME={name}");
     let _ = writeln!(out, "*DENSITY\n {},", v("rho")?);
     let _ = writeln!(out, "*ELASTIC\n {}, {}", v("E")?, v("nu")?);
@@ -229,7 +280,13 @@ fn lsdyna_card(out: &mut String, names: &[&str], values: &[String]) {
 /// mpw's does) with failure and pressure cutoff explicitly off, and the
 /// `*EOS_LINEAR_POLYNOMIAL` it needs in solid elements (C1 = K = E / 3(1 − 2ν)), both with
 /// identifier `id`.
-pub fn lsdyna(m: &Material, name: &str, source: &str, units: &Units, id: u32) -> Result<String> {
+pub fn lsdyna(
+    m: &Material,
+    name: &str,
+    about: &Provenance,
+    units: &Units,
+    id: u32,
+) -> Result<String> {
     let si = |n: &str| value(m, n, units).map(|(x, _)| x);
     let f = |x: f64| field10(x);
     let v = |n: &str| si(n).map(f);
@@ -237,8 +294,8 @@ pub fn lsdyna(m: &Material, name: &str, source: &str, units: &Units, id: u32) ->
     let (g, k) = (e / (2.0 * (1.0 + nu)), e / (3.0 * (1.0 - 2.0 * nu)));
     let id = format!("{id:>10}");
     let mut out = String::new();
-    header(&mut out, "$", source, units);
-    let _ = writeln!(out, "$ material {name}; failure off (D1 = 1e20, D2-D5 = 0; PC = -1e20, SPALL = 1): add your own");
+    header(&mut out, "$", about, units);
+    comment(&mut out, "$", &format!("material {name}; failure off (D1 = 1e20, D2-D5 = 0; PC = -1e20, SPALL = 1): add your own"));
     let gamma_tq = si("gamma_tq")?;
     let heating = if gamma_tq > 0.0 {
         format!(
@@ -248,11 +305,18 @@ pub fn lsdyna(m: &Material, name: &str, source: &str, units: &Units, id: u32) ->
     } else {
         "mpw heats nothing; a code that turns plastic work into heat will".into()
     };
-    let _ = writeln!(out, "$ gamma_tq = {gamma_tq} has no field here: {heating}");
-    let _ = writeln!(
-        out,
-        "$ below EPSO mpw's rate term is 1; the part that uses this material names EOSID {}",
-        id.trim()
+    comment(
+        &mut out,
+        "$",
+        &format!("gamma_tq = {gamma_tq} has no field here: {heating}"),
+    );
+    comment(
+        &mut out,
+        "$",
+        &format!(
+            "below EPSO mpw's rate term is 1; the part that uses this material names EOSID {}",
+            id.trim()
+        ),
     );
     let _ = writeln!(out, "*MAT_JOHNSON_COOK");
     let one = f(1.0);
@@ -330,7 +394,7 @@ pub fn lsdyna(m: &Material, name: &str, source: &str, units: &Units, id: u32) ->
 }
 
 /// A generic JSON card: `{"parameters": {"A": {"value": .., "unit": ".."}, ..}, ..}`.
-pub fn json(m: &Material, name: &str, source: &str, units: &Units) -> Result<String> {
+pub fn json(m: &Material, name: &str, about: &Provenance, units: &Units) -> Result<String> {
     let quoted = |s: &str| format!("\"{}\"", s.replace('\\', "\\\\").replace('"', "\\\""));
     let mut fields = Vec::new();
     for n in FIELDS {
@@ -342,10 +406,12 @@ pub fn json(m: &Material, name: &str, source: &str, units: &Units) -> Result<Str
             quoted(unit)
         ));
     }
+    let caveats: Vec<String> = about.caveats.iter().map(|c| quoted(c)).collect();
     Ok(format!(
-        "{{\n  \"model\": \"johnson-cook\",\n  \"form\": \"[A + B eps_p^N] [1 + C ln(rate/alpha_dot0)] [1 - T*^M], T* = (T - theta0)/(theta_m - theta0); rate term 1 below alpha_dot0, T* clamped to [0, 1]; Kirchhoff yield stress\",\n  \"name\": {},\n  \"source\": {},\n  \"units\": {},\n  \"parameters\": {{\n{}\n  }}\n}}\n",
+        "{{\n  \"model\": \"johnson-cook\",\n  \"form\": \"[A + B eps_p^N] [1 + C ln(rate/alpha_dot0)] [1 - T*^M], T* = (T - theta0)/(theta_m - theta0); rate term 1 below alpha_dot0, T* clamped to [0, 1]; Kirchhoff yield stress\",\n  \"name\": {},\n  \"source\": {},\n  \"caveats\": [{}],\n  \"units\": {},\n  \"parameters\": {{\n{}\n  }}\n}}\n",
         quoted(name),
-        quoted(source),
+        quoted(&about.source),
+        caveats.join(", "),
         quoted(units.description),
         fields.join(",\n")
     ))

@@ -107,6 +107,8 @@ fn population(seed: u64) -> FitSet {
     FitSet {
         name: "coverage".into(),
         file: "coverage.toml".into(),
+        material_file: "ss304l.toml".into(),
+        material_name: "304L annealed".into(),
         base: m,
         stages: vec![Stage {
             free: (0..params.len()).collect(),

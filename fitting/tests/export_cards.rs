@@ -3,7 +3,7 @@
 //! multiplication and one division by the unit factor), in every unit system; the LS-DYNA
 //! card's 10-character fields to the precision of 9 written characters.
 
-use fitting::export::{abaqus, field10, json, lsdyna, UNIT_SYSTEMS};
+use fitting::export::{abaqus, field10, json, lsdyna, Provenance, UNIT_SYSTEMS};
 use fitting::fit::levels::model::Material;
 use materials::material::Model;
 use std::path::Path;
@@ -39,7 +39,7 @@ fn abaqus_block_reads_back_in_every_unit_system() {
         let m = material(file);
         let p = |n: &str| m.param(n).unwrap();
         for u in UNIT_SYSTEMS {
-            let card = abaqus(&m, "X", file, &u).unwrap();
+            let card = abaqus(&m, "X", &Provenance::named(file), &u).unwrap();
             assert!(
                 card.contains(&format!("units: {}", u.description)),
                 "{card}"
@@ -102,7 +102,7 @@ fn json_field(card: &str, name: &str) -> (f64, String) {
 fn json_card_reads_back_with_units() {
     let m = material("ss304l.toml");
     for u in UNIT_SYSTEMS {
-        let card = json(&m, "X", "test", &u).unwrap();
+        let card = json(&m, "X", &Provenance::named("test"), &u).unwrap();
         for (name, factor, unit) in [
             ("E", u.stress, u.stress_unit),
             ("A", u.stress, u.stress_unit),
@@ -138,8 +138,8 @@ fn converted_values_are_written_without_rounding_residue() {
         let m = material(file);
         for u in UNIT_SYSTEMS {
             for card in [
-                abaqus(&m, "X", "test", &u).unwrap(),
-                json(&m, "X", "test", &u).unwrap(),
+                abaqus(&m, "X", &Provenance::named("test"), &u).unwrap(),
+                json(&m, "X", &Provenance::named("test"), &u).unwrap(),
             ] {
                 let residue = card
                     .split(|c: char| !(c.is_ascii_digit() || c == '.'))
@@ -151,7 +151,7 @@ fn converted_values_are_written_without_rounding_residue() {
     let card = abaqus(
         &material("42crmo4_qt660.toml"),
         "X",
-        "test",
+        &Provenance::named("test"),
         &UNIT_SYSTEMS[1],
     )
     .unwrap();
@@ -164,13 +164,13 @@ fn known_values_in_the_mm_unit_systems() {
     // 7.9e-9 t/mm³, c 500 J/(kg K) = 5e8 mJ/(t K).
     let m = material("ss304l.toml");
     let u = fitting::export::units("mm-s-tonne").unwrap();
-    let card = abaqus(&m, "SS304L", "test", &u).unwrap();
+    let card = abaqus(&m, "SS304L", &Provenance::named("test"), &u).unwrap();
     assert_eq!(data_line(&card, "*ELASTIC"), [193000.0, 0.29]);
     assert!(close(data_line(&card, "*DENSITY")[0], 7.9e-9));
     assert!(close(data_line(&card, "*SPECIFIC HEAT")[0], 5e8));
     // mm-ms-kg: E = 193 GPa, ρ = 7.9e-6 kg/mm³, α̇0 = 1e-4 1/s = 1e-7 1/ms, c unchanged.
     let u = fitting::export::units("mm-ms-kg").unwrap();
-    let card = abaqus(&m, "SS304L", "test", &u).unwrap();
+    let card = abaqus(&m, "SS304L", &Provenance::named("test"), &u).unwrap();
     assert!(close(data_line(&card, "*ELASTIC")[0], 193.0));
     assert!(close(data_line(&card, "*DENSITY")[0], 7.9e-6));
     assert!(close(
@@ -205,7 +205,7 @@ fn lsdyna_card_reads_back_in_every_unit_system() {
         let m = material(file);
         let p = |n: &str| m.param(n).unwrap();
         for u in UNIT_SYSTEMS {
-            let card = lsdyna(&m, "X", file, &u, 7).unwrap();
+            let card = lsdyna(&m, "X", &Provenance::named(file), &u, 7).unwrap();
             assert!(card.contains(&format!("units: {}", u.description)));
             let (e, nu, s) = (p("E") * u.stress, p("nu"), u.stress);
             let mat = [

@@ -1,6 +1,7 @@
 //! A fit that no parameter set can make good (here: a strain column of fractions declared
 //! as "%", so every strain is 100× too small) exits non-zero with the likely causes, after
-//! writing its report; `--allow-poor-fit` exits 0.
+//! writing its report; `--allow-poor-fit` exits 0. Its parameters end on their bounds with
+//! undefined correlations: the summary says so and never "converged".
 
 use std::path::Path;
 use std::process::Command;
@@ -58,6 +59,15 @@ fn a_strain_in_percent_declared_on_fractions_is_a_poor_fit() {
         err.contains("a strain in % declared as \"1\" or the reverse"),
         "{err}"
     );
+    let table = String::from_utf8_lossy(&out.stdout);
+    let summary = table.lines().find(|l| l.starts_with("Summary:")).unwrap();
+    assert!(
+        summary.starts_with("Summary: stopped at the bounds: B at its upper bound 4000.00 MPa"),
+        "{summary}"
+    );
+    assert!(!table.contains("(converged)"), "{table}");
+    assert_eq!(summary.matches("WARNING").count(), 1, "{summary}");
+    assert!(summary.contains("correlations are undefined"), "{summary}");
     assert!(
         dir.join("out/report.toml").is_file(),
         "the report is written"

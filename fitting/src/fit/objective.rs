@@ -46,6 +46,9 @@ pub struct Block {
     /// SHPB: mean equilibrium ratio R = 2 |F1 − F2| / |F1 + F2| over the window [-]
     /// (NaN for other experiments).
     pub equilibrium_ratio: f64,
+    /// Specimen strain over the compared samples, [smallest, largest] (tensile: engineering
+    /// strain; SHPB: magnitude of the true strain) [-]; NaN until the builder sets it.
+    pub strain_range: [f64; 2],
 }
 
 impl Block {
@@ -95,6 +98,7 @@ impl Block {
             group: None,
             metadata_source: String::new(),
             equilibrium_ratio: f64::NAN,
+            strain_range: [f64::NAN; 2],
         })
     }
 

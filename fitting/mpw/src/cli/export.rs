@@ -1,18 +1,25 @@
-//! `mpw export MATERIAL [--params report.toml] --format abaqus|lsdyna|json --units SYSTEM`: write a
-//! Johnson-Cook parameter set for another code (`fitting::export`): the material file's
-//! values, with a fit report's `final_parameters` applied when `--params` is given.
+//! `mpw export --params report.toml [MATERIAL] --format abaqus|lsdyna|json --units SYSTEM`:
+//! write a Johnson-Cook parameter set for another code (`fitting::export`). With a fit
+//! report, the report's final parameters on the material it names, and the fit's covered
+//! ranges and warnings (`fitting::fit::reports::origin`) as comment lines of the card and
+//! on stderr; a material file given beside the report must hold the values the report
+//! kept fixed. Without a report, the material file's own values.
 
 use anyhow::{bail, Result};
-use fitting::export::{abaqus, json, lsdyna, units};
+use fitting::export::{abaqus, json, lsdyna, units, Provenance};
+use fitting::fit::levels::model::Material;
+use fitting::fit::reports::origin::FitOrigin;
 use fitting::fit::reports::report::read_parameters;
+use materials::material::Model;
 use materials::AnyModel;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Material file (Johnson-Cook) with the elastic and thermal constants.
-    pub material: PathBuf,
-    /// A fit report whose final parameters replace the material file's.
+    /// Material file (Johnson-Cook); with --params optional (the report names its material),
+    /// and when given it must hold the values the fit kept fixed.
+    pub material: Option<PathBuf>,
+    /// A fit report (report.toml) whose final parameters the card carries.
     #[arg(long)]
     pub params: Option<PathBuf>,
     /// Card format: abaqus, lsdyna (*MAT_JOHNSON_COOK with its *EOS_LINEAR_POLYNOMIAL) or json.
@@ -32,37 +39,95 @@ pub struct Args {
     pub out: Option<PathBuf>,
 }
 
-pub fn run(args: Args) -> Result<()> {
-    let units = units(&args.units)?;
-    let base = match materials::load_material(&args.material)?.model {
-        AnyModel::ElastoPlastic(m) => m,
-        _ => bail!(
-            "{}: the material must be Johnson-Cook",
-            args.material.display()
-        ),
+fn johnson_cook(file: &Path) -> Result<Material> {
+    match materials::load_material(file)?.model {
+        AnyModel::ElastoPlastic(m) => Ok(m),
+        _ => bail!("{}: the material must be Johnson-Cook", file.display()),
+    }
+}
+
+/// Every parameter the fit kept fixed must have the same value in `given` as in the
+/// report's material `fitted`: else the card would mix two materials.
+fn check_same_material(
+    given: &Path,
+    base: &Material,
+    fitted: &Material,
+    origin: &FitOrigin,
+) -> Result<()> {
+    let differ: Vec<String> = base
+        .param_names()
+        .iter()
+        .filter(|n| !origin.fitted.iter().any(|f| f == *n))
+        .filter_map(|n| {
+            let (a, b) = (base.param(n)?, fitted.param(n)?);
+            let same = (a - b).abs() <= 1e-12 * a.abs().max(b.abs());
+            (!same).then(|| format!("`{n}` = {a:e} in the file, {b:e} in the report"))
+        })
+        .collect();
+    if !differ.is_empty() {
+        bail!(
+            "{}: not the material of the fit {} ({}): {}\nhint: leave the material out (the report names its own) or give the file the fit used",
+            given.display(),
+            origin.report.display(),
+            origin.material_file.display(),
+            differ.join("; ")
+        );
+    }
+    Ok(())
+}
+
+/// The material to write, where it comes from, and its default name.
+fn material(args: &Args) -> Result<(Material, Provenance, String)> {
+    let stem = |file: &Path| {
+        file.file_stem()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .to_uppercase()
     };
-    let material = match &args.params {
-        Some(report) => read_parameters(&base, report)?,
-        None => base,
+    let Some(report) = &args.params else {
+        let Some(file) = &args.material else {
+            bail!("nothing to export: give a fit report (--params report.toml) or a material file");
+        };
+        let about = Provenance::named(&file.display().to_string());
+        return Ok((johnson_cook(file)?, about, stem(file)));
     };
-    let source = match &args.params {
-        Some(report) => format!(
+    let origin = FitOrigin::read(report)?;
+    let base = match &args.material {
+        Some(file) => johnson_cook(file)?,
+        None => johnson_cook(&origin.material_file).map_err(|e| {
+            anyhow::anyhow!("{e}\nhint: the report {} names this material file; give the material file after `export`", report.display())
+        })?,
+    };
+    let fitted = read_parameters(&base, report)?;
+    if let Some(file) = &args.material {
+        check_same_material(file, &base, &fitted, &origin)?;
+    }
+    let about = Provenance {
+        source: format!(
             "{} with the fit {}",
-            args.material.display(),
+            origin.material_file.display(),
             report.display()
         ),
-        None => args.material.display().to_string(),
+        caveats: origin.caveats(),
     };
-    let stem = args
-        .material
-        .file_stem()
-        .unwrap_or_default()
-        .to_string_lossy();
-    let name = args.name.clone().unwrap_or_else(|| stem.to_uppercase());
+    if origin.has_warnings() {
+        for caveat in about.caveats.iter().filter(|c| c.starts_with("WARNING")) {
+            eprintln!("warning: {}", &caveat["WARNING: ".len()..]);
+        }
+    }
+    eprintln!("note: {}", origin.coverage());
+    let name = origin.material_name.replace(' ', "_").to_uppercase();
+    Ok((fitted, about, name))
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let units = units(&args.units)?;
+    let (material, about, default_name) = material(&args)?;
+    let name = args.name.clone().unwrap_or(default_name);
     let card = match args.format.as_str() {
-        "abaqus" => abaqus(&material, &name, &source, &units)?,
-        "lsdyna" => lsdyna(&material, &name, &source, &units, args.id)?,
-        "json" => json(&material, &name, &source, &units)?,
+        "abaqus" => abaqus(&material, &name, &about, &units)?,
+        "lsdyna" => lsdyna(&material, &name, &about, &units, args.id)?,
+        "json" => json(&material, &name, &about, &units)?,
         other => bail!("--format \"{other}\": expected \"abaqus\", \"lsdyna\" or \"json\""),
     };
     match &args.out {

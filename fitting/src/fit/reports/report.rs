@@ -38,6 +38,8 @@ struct StageRow {
     contact_assumptions: Vec<ContactRow>,
     /// Parameter pairs the data do not identify separately (`fit::statistics::identifiability`).
     not_identified: Vec<String>,
+    /// Free parameters that ended on a bound, e.g. `A at its upper bound 800 MPa`.
+    at_bounds: Vec<String>,
     objective: f64,
     samples: usize,
     starts: usize,
@@ -47,6 +49,8 @@ struct StageRow {
     iterations: usize,
     wall_time_s: f64,
     termination: String,
+    /// The optimizer converged, no parameter sits on a bound and every correlation is a
+    /// number.
     converged: bool,
 }
 
@@ -72,6 +76,8 @@ struct ExperimentRow {
     rms_percent_of_mean: f64,
     /// SHPB: mean equilibrium ratio R over the window.
     equilibrium_ratio: Option<f64>,
+    /// Specimen strain over the compared samples (`Block::strain_range`).
+    strain_range: Option<[f64; 2]>,
     /// Tensile: where rate and temperature were read.
     metadata_source: Option<String>,
 }
@@ -94,6 +100,9 @@ struct GroupRow {
 #[derive(Serialize)]
 struct ReportFile {
     set: String,
+    /// The material the set was fitted with: its name and file.
+    material_name: String,
+    material_file: String,
     final_parameters: Vec<(String, f64)>,
     stages: Vec<StageRow>,
     groups: Vec<GroupRow>,
@@ -141,8 +150,31 @@ fn experiment_rows(set: &FitSet, result: &FitResult) -> Vec<ExperimentRow> {
                 },
                 rms_percent_of_mean: 100.0 * rms / b.scale,
                 equilibrium_ratio: Some(b.equilibrium_ratio).filter(|r| r.is_finite()),
+                strain_range: Some(b.strain_range).filter(|r| r.iter().all(|x| x.is_finite())),
                 metadata_source: Some(b.metadata_source.clone()).filter(|s| !s.is_empty()),
             }
+        })
+        .collect()
+}
+
+/// The free parameters whose value lies within 1e-6 of their bound range from a bound: the
+/// optimizer was stopped there, not by the data.
+fn at_bounds(set: &FitSet, free: &[String], values: &[f64]) -> Vec<String> {
+    free.iter()
+        .zip(values)
+        .filter_map(|(name, &v)| {
+            let p = set.params.iter().find(|p| &p.name == name)?;
+            let near = |bound: f64| (v - bound).abs() <= 1e-6 * (p.upper - p.lower);
+            let side = match (near(p.lower), near(p.upper)) {
+                (true, _) => ("lower", p.lower),
+                (_, true) => ("upper", p.upper),
+                _ => return None,
+            };
+            Some(format!(
+                "{name} at its {} bound {}",
+                side.0,
+                show(name, side.1)
+            ))
         })
         .collect()
 }
@@ -193,6 +225,7 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
                     })
                     .collect(),
                 not_identified: identifiability::warnings(&s.free, &s.correlation),
+                at_bounds: at_bounds(set, &s.free, &s.values),
                 objective: s.cost,
                 samples: s.samples,
                 starts: s.runs.len(),
@@ -202,7 +235,9 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
                 iterations: s.runs.iter().map(|r| r.iterations).sum(),
                 wall_time_s: s.wall_s,
                 termination: best.termination.clone(),
-                converged: best.converged,
+                converged: best.converged
+                    && at_bounds(set, &s.free, &s.values).is_empty()
+                    && s.correlation.iter().flatten().all(|r| r.is_finite()),
             }
         })
         .collect();
@@ -214,6 +249,13 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
         .collect();
     ReportFile {
         set: set.name.clone(),
+        material_name: set.material_name.clone(),
+        material_file: set
+            .material_file
+            .canonicalize()
+            .unwrap_or_else(|_| set.material_file.clone())
+            .display()
+            .to_string(),
         final_parameters,
         stages,
         groups: group_rows(set, result),
@@ -232,6 +274,25 @@ pub fn show(name: &str, v: f64) -> String {
     }
 }
 
+/// How a stage ended: "converged", "stopped at the bounds of A at its upper bound ..." (the
+/// bounds, not the data, decided), "NOT converged: correlations undefined ..." or "NOT
+/// converged".
+fn verdict(s: &StageRow) -> String {
+    if !s.at_bounds.is_empty() {
+        return format!(
+            "stopped at the bounds: {}; widen them or fix the data (a unit?)",
+            s.at_bounds.join(", ")
+        );
+    }
+    if s.correlation.iter().flatten().any(|r| !r.is_finite()) {
+        return "NOT converged: correlations undefined (the Jacobian is singular: a parameter does not change the prediction)".into();
+    }
+    match s.converged {
+        true => "converged".into(),
+        false => "NOT converged".into(),
+    }
+}
+
 /// One line: convergence, the worst group against its mean curve, and what the data do not
 /// identify.
 fn summary(r: &ReportFile) -> String {
@@ -241,11 +302,14 @@ fn summary(r: &ReportFile) -> String {
     });
     let mut parts = Vec::new();
     if !r.stages.is_empty() {
-        let all = r.stages.iter().all(|s| s.converged);
-        parts.push(if all {
-            "converged".to_string()
-        } else {
-            "NOT converged".to_string()
+        let verdicts: Vec<String> = r.stages.iter().map(verdict).collect();
+        parts.push(match r.stages.iter().all(|s| s.converged) {
+            true => "converged".to_string(),
+            false => verdicts
+                .into_iter()
+                .filter(|v| v != "converged")
+                .collect::<Vec<_>>()
+                .join("; "),
         });
     }
     if let Some(g) = worst {
@@ -304,7 +368,7 @@ pub fn table(set: &FitSet, result: &FitResult) -> String {
             s.iterations,
             s.wall_time_s,
             s.termination,
-            if s.converged { "converged" } else { "NOT converged" },
+            verdict(s),
             s.objective,
             s.samples
         );

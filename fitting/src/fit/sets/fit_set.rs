@@ -35,6 +35,9 @@ pub struct Stage {
 pub struct FitSet {
     pub name: String,
     pub file: PathBuf,
+    /// The material file the set names, and the name it gives the material.
+    pub material_file: PathBuf,
+    pub material_name: String,
     pub base: Material,
     pub params: Vec<FreeParam>,
     pub blocks: Vec<Block>,
@@ -53,7 +56,9 @@ impl FitSet {
         let folder = path.parent().unwrap_or(Path::new("."));
         let here = |field: &str| format!("{}: field `{field}`", path.display());
         let material_file = resolve(folder, &set.material);
-        let base = match materials::load_material(&material_file)?.model {
+        let loaded = materials::load_material(&material_file)?;
+        let material_name = loaded.name.clone();
+        let base = match loaded.model {
             AnyModel::ElastoPlastic(m) => m,
             _ => bail!(
                 "{}: the material must be elasto-plastic (Johnson-Cook)",
@@ -138,6 +143,8 @@ impl FitSet {
         Ok(FitSet {
             name: set.name,
             file: path.to_path_buf(),
+            material_file,
+            material_name,
             base,
             params,
             blocks,
@@ -259,6 +266,7 @@ fn tensile_block(
         "{} 1/s, {:.1} K",
         e.nominal_strain_rate_per_s, e.temperature_k
     ));
+    block.strain_range = range_of(&block.x);
     block.metadata_source = format!(
         "rate: {}; temperature: {}",
         e.rate_source, e.temperature_source
@@ -421,6 +429,11 @@ fn shpb_block(
         FaceForces::F2 => vec!["F2".into()],
     };
     block.equilibrium_ratio = ratio;
+    let strain: Vec<f64> = samples
+        .iter()
+        .map(|&k| analysis.true_strain[k].abs())
+        .collect();
+    block.strain_range = range_of(&strain);
     block.temperature_k = e.temperature_k;
     let strain_rate: Vec<f64> = samples
         .iter()
@@ -428,4 +441,11 @@ fn shpb_block(
         .collect();
     block.rate_per_s = strain_rate.iter().sum::<f64>() / strain_rate.len() as f64;
     Ok(block)
+}
+
+/// [smallest, largest] of `values` (NaN for none).
+fn range_of(values: &[f64]) -> [f64; 2] {
+    values
+        .iter()
+        .fold([f64::NAN, f64::NAN], |[lo, hi], &v| [lo.min(v), hi.max(v)])
 }

@@ -18,11 +18,14 @@ fn remedy(name: &str) -> &'static str {
 
 /// One line per pair of `free` with |correlation| ≥ `LIMIT`.
 pub fn warnings(free: &[String], correlation: &[Vec<f64>]) -> Vec<String> {
+    if correlation.iter().flatten().any(|r| r.is_nan()) {
+        return vec!["the correlations are undefined (the Jacobian is singular: a parameter does not change the prediction, for example because it sits on a bound)".into()];
+    }
     let mut out = Vec::new();
     for i in 0..free.len() {
         for j in i + 1..free.len() {
             let r = correlation[i][j];
-            if r.abs() >= LIMIT || r.is_nan() {
+            if r.abs() >= LIMIT {
                 // The remedy of the rate or temperature parameter when the pair has one.
                 let key = if remedy(&free[j]) != remedy("A") {
                     &free[j]
