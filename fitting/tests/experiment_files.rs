@@ -50,6 +50,22 @@ fn tensile_force_and_units_convert_to_si_and_cut_at_max_stress() {
     assert_eq!(e.used_range(), 0..3);
 }
 
+/// The columns written as `[columns.time]` table headers, not inline tables, read the same
+/// (they were refused with "invalid type: string \"time\", expected a borrowed string").
+#[test]
+fn columns_as_table_headers_read_like_inline_tables() {
+    let headers = "kind = \"tensile\"\ndata = \"t.csv\"\ntemperature = \"20 degC\"\n\
+        nominal_strain_rate = \"1 1/s\"\n[geometry]\ndiameter = \"10 mm\"\n\
+        [columns.time]\nname = \"time_ms\"\nunit = \"ms\"\n\
+        [columns.strain]\nname = \"strain_pct\"\nunit = \"%\"\n\
+        [columns.force]\nname = \"force_kn\"\nunit = \"kN\"\n\
+        [window]\nup_to_max_stress = false\n";
+    let e = load_tensile("headers", headers).unwrap();
+    let inline = load_tensile("inline", &tensile_toml(TENSILE_COLUMNS, "")).unwrap();
+    assert_eq!(e.eng_stress_pa, inline.eng_stress_pa);
+    assert_eq!(e.used_range(), 0..4);
+}
+
 #[test]
 fn window_outside_data_names_the_key() {
     let toml = tensile_toml(TENSILE_COLUMNS, "[window]\nstrain_max = 0.5\n");

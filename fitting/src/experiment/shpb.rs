@@ -74,7 +74,7 @@ struct ShpbFile {
     polarity: Option<Spanned<String>>,
     alignment: Option<Spanned<String>>,
     dispersion: Option<Spanned<bool>>,
-    savitzky_golay: Option<Spanned<FilterSpec>>,
+    savitzky_golay: Option<FilterSpec>,
     columns: ShpbColumns,
     #[serde(default)]
     bar: BarSpec,
@@ -103,7 +103,7 @@ struct LanlFile {
     polarity: Option<Spanned<String>>,
     alignment: Option<Spanned<String>>,
     dispersion: Option<Spanned<bool>>,
-    savitzky_golay: Option<Spanned<FilterSpec>>,
+    savitzky_golay: Option<FilterSpec>,
     active_arms: Spanned<u32>,
 }
 
@@ -543,7 +543,7 @@ fn stem(toml_file: &Path) -> String {
 struct ProcessingKeys<'a> {
     alignment: Option<&'a Spanned<String>>,
     dispersion: Option<&'a Spanned<bool>>,
-    savitzky_golay: Option<&'a Spanned<FilterSpec>>,
+    savitzky_golay: Option<&'a FilterSpec>,
 }
 
 /// The `alignment` (default geometric), `dispersion` (default off; on, it needs the bar's
@@ -560,8 +560,13 @@ fn processing(
     } = keys;
     let filter = savitzky_golay
         .map(|f| {
-            SavitzkyGolay::new(f.get_ref().window, f.get_ref().order)
-                .map_err(|problem| sidecar.invalid("savitzky_golay", f.span(), problem))
+            SavitzkyGolay::new(f.window, f.order).map_err(|problem| {
+                sidecar.invalid(
+                    "savitzky_golay",
+                    sidecar.table_span("savitzky_golay"),
+                    problem,
+                )
+            })
         })
         .transpose()?;
     let alignment = match alignment {

@@ -49,6 +49,27 @@ impl Sidecar {
         }
     }
 
+    /// The line that opens table `name` (`[name]`, `[name.x]` or `name = {`), for an error
+    /// about the table as a whole (0..0 when it is not found). Tables are not parsed as
+    /// `Spanned`: toml cannot span a table written as `[name.x]` headers.
+    pub fn table_span(&self, name: &str) -> Range<usize> {
+        let mut start = 0;
+        for line in self.text.split_inclusive('\n') {
+            let t = line.trim_start();
+            let opens = t.strip_prefix('[').is_some_and(|r| {
+                r.strip_prefix(name)
+                    .is_some_and(|r| r.starts_with(']') || r.starts_with('.'))
+            }) || t
+                .strip_prefix(name)
+                .is_some_and(|r| r.trim_start().starts_with('='));
+            if opens {
+                return start..start + line.trim_end().len();
+            }
+            start += line.len();
+        }
+        0..0
+    }
+
     pub fn parse<T: DeserializeOwned>(&self) -> Result<T, ExperimentError> {
         toml::from_str(&self.text).map_err(|e| ExperimentError::Toml {
             at: self.at(e.span().unwrap_or(0..0)),

@@ -52,9 +52,9 @@ struct TensileFile {
     data: Spanned<String>,
     temperature: Option<Spanned<String>>,
     nominal_strain_rate: Option<Spanned<String>>,
-    columns: Spanned<TensileColumns>,
+    columns: TensileColumns,
     geometry: Option<GeometrySpec>,
-    window: Option<Spanned<WindowSpec>>,
+    window: Option<WindowSpec>,
 }
 
 #[derive(Deserialize)]
@@ -232,7 +232,7 @@ fn read_record(
         header::STRAIN_RATE_KEYS,
         Dimension::StrainRate,
     )?;
-    let cols = spec.columns.get_ref();
+    let cols = &spec.columns;
     let time_s = sidecar.column(&table, "columns.time", &cols.time, Dimension::Time)?;
     sidecar.check_time_increases(&table, &cols.time, &time_s)?;
     let eng_strain = strain_column(sidecar, &table, spec, geometry)?;
@@ -279,7 +279,6 @@ struct Either<'a> {
 fn direct_or_derived(
     sidecar: &Sidecar,
     table: &CsvTable,
-    spec: &TensileFile,
     q: Either,
 ) -> Result<Vec<f64>, ExperimentError> {
     let (key, direct, dimension) = q.direct;
@@ -299,7 +298,7 @@ fn direct_or_derived(
         }
         _ => Err(sidecar.invalid(
             "columns",
-            spec.columns.span(),
+            sidecar.table_span("columns"),
             format!("expected exactly one of `{key}` and `{raw_key}`"),
         )),
     }
@@ -312,7 +311,7 @@ fn strain_column(
     spec: &TensileFile,
     geometry: &Geometry,
 ) -> Result<Vec<f64>, ExperimentError> {
-    let cols = spec.columns.get_ref();
+    let cols = &spec.columns;
     let q = Either {
         direct: ("strain", &cols.strain, Dimension::Strain),
         raw: ("extension", &cols.extension, Dimension::Length, "m"),
@@ -323,7 +322,7 @@ fn strain_column(
             format!("over the gauge length {l0:e} m as a strain, beyond {limit}: is the extension's unit or the gauge length wrong?")
         },
     };
-    direct_or_derived(sidecar, table, spec, q)
+    direct_or_derived(sidecar, table, q)
 }
 
 /// Engineering stress [Pa]: the stress column, or the force over the cross-section.
@@ -333,7 +332,7 @@ fn stress_column(
     spec: &TensileFile,
     geometry: &Geometry,
 ) -> Result<Vec<f64>, ExperimentError> {
-    let cols = spec.columns.get_ref();
+    let cols = &spec.columns;
     let q = Either {
         direct: ("stress", &cols.stress, Dimension::Stress),
         raw: ("force", &cols.force, Dimension::Force, "N"),
@@ -344,7 +343,7 @@ fn stress_column(
             format!("Pa over the area A0 = {a0:e} m² as a stress, beyond {limit:e} Pa: is the force's unit or the cross-section wrong?")
         },
     };
-    direct_or_derived(sidecar, table, spec, q)
+    direct_or_derived(sidecar, table, q)
 }
 
 /// Shorten `range` to end at (and include) its maximum of engineering stress.
@@ -359,12 +358,12 @@ fn up_to_max(stress: &[f64], range: Range<usize>) -> Range<usize> {
 
 fn used_range(
     sidecar: &Sidecar,
-    window: &Spanned<WindowSpec>,
+    window: &WindowSpec,
     time: &[f64],
     strain: &[f64],
     stress: &[f64],
 ) -> Result<Range<usize>, ExperimentError> {
-    let w = window.get_ref();
+    let w = window;
     let span = |v: &[f64]| {
         v.iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
@@ -421,7 +420,7 @@ fn used_range(
     if range.len() < 2 {
         return Err(sidecar.invalid(
             "window",
-            window.span(),
+            sidecar.table_span("window"),
             format!(
                 "the window holds {} samples, at least 2 needed",
                 range.len()
