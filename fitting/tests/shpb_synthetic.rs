@@ -230,3 +230,35 @@ fn a_hardening_specimen_has_no_constant_rate_plateau() {
     assert!(!p.is_constant_rate(), "{}", p.in_band_fraction);
     assert!(p.rate_change() < -0.25, "{}", p.rate_change());
 }
+
+/// A bar diameter in m where mm was meant (`"2 m"` for 20 mm) gives a plateau stress of
+/// 10⁷ MPa: refused with the keys to check, as is a stress below 1 MPa.
+#[test]
+fn an_implausible_plateau_stress_names_the_diameters() {
+    let synthetic = SyntheticShpb::generate(&SyntheticSetup::steel_945_like(5));
+    let mut wide = synthetic.experiment.clone();
+    wide.bar.diameter_m *= 100.0;
+    match analyze(&wide).unwrap_err() {
+        ShpbError::ImplausibleStress {
+            stress_pa, likely, ..
+        } => {
+            assert!(stress_pa > 1e13, "{stress_pa}");
+            assert!(likely.starts_with("bar.diameter too large"), "{likely}");
+        }
+        other => panic!("{other}"),
+    }
+    let mut thin = synthetic.experiment.clone();
+    thin.bar.diameter_m /= 40.0;
+    match analyze(&thin).unwrap_err() {
+        ShpbError::ImplausibleStress {
+            stress_pa, likely, ..
+        } => {
+            assert!(stress_pa < 1e6, "{stress_pa}");
+            assert!(
+                likely.starts_with("specimen.diameter too large"),
+                "{likely}"
+            );
+        }
+        other => panic!("{other}"),
+    }
+}

@@ -132,6 +132,7 @@ pub fn analyze_with(
         &stress_3wave_pa,
         &equilibrium_ratio,
     )?;
+    check_stress(&exp.name, plateau.stress_3wave_pa)?;
     Ok(ShpbAnalysis {
         name: exp.name.clone(),
         time_s,
@@ -157,6 +158,27 @@ pub fn analyze_with(
         processing,
         shifts,
         plateau,
+    })
+}
+
+/// Plateau stresses of real specimens, from soft polymers to hardened steel with margin
+/// [Pa]. The stress is F/A_s with F = E_b A_b ε, so a diameter in the wrong unit moves it by
+/// the square of the unit's factor.
+pub const PLAUSIBLE_STRESS: (f64, f64) = (1e6, 1e10);
+
+fn check_stress(name: &str, stress_pa: f64) -> Result<(), ShpbError> {
+    let (low, high) = PLAUSIBLE_STRESS;
+    let likely = match stress_pa.abs() {
+        s if s > high => "bar.diameter too large or specimen.diameter too small (a length in m written for mm?), or a gauge column in a unit too large",
+        s if s < low => "specimen.diameter too large or bar.diameter too small (a length in mm written for m?), or a gauge column in microstrain declared as strain",
+        _ => return Ok(()),
+    };
+    Err(ShpbError::ImplausibleStress {
+        name: name.to_string(),
+        stress_pa: stress_pa.abs(),
+        low,
+        high,
+        likely,
     })
 }
 

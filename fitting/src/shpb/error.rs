@@ -43,6 +43,14 @@ pub enum ShpbError {
         end_s: f64,
         needed_s: f64,
     },
+    #[error("{name}: the plateau stress (3-wave, engineering) is {stress_pa:.4e} Pa, outside {low:e} .. {high:e} Pa, the range of metal and polymer specimens: {likely}")]
+    ImplausibleStress {
+        name: String,
+        stress_pa: f64,
+        low: f64,
+        high: f64,
+        likely: &'static str,
+    },
     #[error("{name}: no strain-rate plateau: the strain rate never exceeds half its maximum for more than one sample")]
     NoPlateau { name: String },
     #[error("{name}: the dispersion correction needs the bar's Poisson ratio (bar.poisson_ratio in the TOML)")]
