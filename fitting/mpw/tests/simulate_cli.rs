@@ -35,3 +35,48 @@ fn a_safety_factor_above_one_is_warned_about_and_named_when_the_run_fails() {
         "the failed run keeps its output"
     );
 }
+
+/// An SHPB scene says which parameters it runs with and where they come from: the material
+/// file's start values unless `--params` names a fit (or another material file).
+#[test]
+fn an_shpb_run_names_the_source_of_its_parameters() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .canonicalize()
+        .unwrap();
+    let data = root.join("data");
+    let scene = format!(
+        "kind = \"shpb\"\nexperiment = \"{}\"\nmaterial = \"{}\"\nlevel = \"mpm-axisymmetric\"\n\
+         drive = \"measured-velocity\"\nlayers = 4\n",
+        data.join("experiments/shpb_293K.toml").display(),
+        data.join("materials/42crmo4_qt660.toml").display()
+    );
+    let dir = std::env::temp_dir().join(format!("mpw-simulate-shpb-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("shpb.toml"), scene).unwrap();
+    let run = |extra: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_mpw"))
+            .args(["simulate", dir.join("shpb.toml").to_str().unwrap(), "--out"])
+            .arg(dir.join("out"))
+            .args(extra)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr).to_string();
+        assert!(out.status.success(), "{err}");
+        err
+    };
+    let err = run(&[]);
+    assert!(
+        err.contains("parameters: A = 801.00 MPa, B = 1531.00 MPa")
+            && err.contains("from the material file")
+            && err.contains("the file's own values, not a fit's: pass a fit's report with --params"),
+        "{err}"
+    );
+    let other = data.join("materials/aisi_4340.toml");
+    let err = run(&["--params", other.to_str().unwrap()]);
+    assert!(
+        err.contains("A = 792.00 MPa") && err.contains(&format!("from {}", other.display())),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

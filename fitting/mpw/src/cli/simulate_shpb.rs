@@ -6,12 +6,13 @@
 
 use crate::charts::{LineChart, Series};
 use anyhow::{Context, Result};
-use fitting::fit::reports::report::read_parameters;
+use fitting::fit::reports::report::{read_parameters, show};
 use fitting::shpb::signal::interpolate;
 use fitting::shpb_model::scene::ShpbScene;
 use fitting::shpb_model::study::{contact_sensitivity, refinement, relative_rms, Resolution};
 use fitting::shpb_model::{Discretization, Drive, ModelLevel, ShpbRun};
 use materials::plasticity::ElastoPlastic;
+use materials::material::Model;
 use mpm_core::output::SnapshotWriter;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -19,14 +20,26 @@ use std::path::Path;
 /// Snapshots written over the run.
 const SNAPSHOTS: usize = 10;
 
-/// The scene and its material (the scene's file, or `params`).
+/// The scene and its material (the scene's file, or `params`), saying on stderr which
+/// parameters the run uses and where they come from.
 fn load(scene_file: &Path, params: Option<&Path>) -> Result<(ShpbScene, ElastoPlastic)> {
     let scene = ShpbScene::load(scene_file)?;
     let base = materials::load_elasto_plastic(&scene.material_file)?;
-    let material = match params {
-        Some(file) => read_parameters(&base, file)?,
-        None => base,
+    let (material, source) = match params {
+        Some(file) => (read_parameters(&base, file)?, file.display().to_string()),
+        None => (
+            base,
+            format!(
+                "the material file {} (the file's own values, not a fit's: pass a fit's report with --params out/fit/report.toml)",
+                scene.material_file.display()
+            ),
+        ),
     };
+    let values: Vec<String> = ["A", "B", "N", "C", "M"]
+        .iter()
+        .filter_map(|n| material.param(n).map(|v| format!("{n} = {}", show(n, v))))
+        .collect();
+    eprintln!("parameters: {} from {source}", values.join(", "));
     Ok((scene, material))
 }
 
