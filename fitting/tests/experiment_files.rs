@@ -785,3 +785,33 @@ transmitted = { name = \"tr_ue\", unit = \"microstrain\" }\n";
         "{e}"
     );
 }
+
+/// A bare number where a quantity string is expected gets the unit it probably lacked.
+#[test]
+fn a_bare_number_for_a_quantity_suggests_its_unit() {
+    let toml = tensile_toml(TENSILE_COLUMNS, "").replace("diameter = \"10 mm\"", "diameter = 10");
+    let e = load_tensile("bare", &toml).unwrap_err().to_string();
+    assert!(
+        e.contains("t.toml:10:12: invalid type: integer `10`, expected a string")
+            && e.contains("e.g. `diameter = \"10 mm\"`"),
+        "{e}"
+    );
+}
+
+/// A `data` path that does not resolve is an error at the key, saying the path is
+/// relative to the TOML (a TOML copied without its CSV).
+#[test]
+fn a_data_path_that_does_not_resolve_names_the_key_and_the_folder() {
+    let dir = folder("moved", &[("t.toml", &tensile_toml(TENSILE_COLUMNS, ""))]);
+    let e = TensileExperiment::load(&dir.join("t.toml")).unwrap_err();
+    assert!(
+        matches!(&e, ExperimentError::InvalidValue { at, key, .. } if at.line == 2 && key == "data"),
+        "{e}"
+    );
+    let text = e.to_string();
+    assert!(
+        text.contains("the path is relative to the folder of this TOML")
+            && text.contains(&dir.display().to_string()),
+        "{text}"
+    );
+}

@@ -69,7 +69,8 @@ fn an_shpb_run_names_the_source_of_its_parameters() {
     assert!(
         err.contains("parameters: A = 801.00 MPa, B = 1531.00 MPa")
             && err.contains("from the material file")
-            && err.contains("the file's own values, not a fit's: pass a fit's report with --params"),
+            && err
+                .contains("the file's own values, not a fit's: pass a fit's report with --params"),
         "{err}"
     );
     let other = data.join("materials/aisi_4340.toml");

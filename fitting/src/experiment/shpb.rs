@@ -316,7 +316,7 @@ impl ShpbExperiment {
         }
         let spec: ShpbFile = sidecar.parse_kind("shpb")?;
         let sign = polarity_sign(&sidecar, spec.polarity.as_ref())?;
-        let data_file = sidecar.relative_path(spec.data.get_ref());
+        let data_file = sidecar.data_path(&spec.data)?;
         let table = CsvTable::read_rows(&data_file, 2)?;
         let temperature_k = sidecar
             .metadata(
@@ -617,7 +617,7 @@ fn load_lanl(sidecar: &Sidecar, toml_file: &Path) -> Result<ShpbExperiment, Expe
     if ![1, 2, 4].contains(&arms) {
         return Err(sidecar.invalid("active_arms", spec.active_arms.span(), "expected 1, 2 or 4"));
     }
-    let data_file = sidecar.relative_path(spec.data.get_ref());
+    let data_file = sidecar.data_path(&spec.data)?;
     let raw = RawRecord::read(&data_file)?;
     raw.check_compression()?;
     let mut notes = Vec::new();

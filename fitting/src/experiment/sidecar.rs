@@ -71,9 +71,12 @@ impl Sidecar {
     }
 
     pub fn parse<T: DeserializeOwned>(&self) -> Result<T, ExperimentError> {
-        toml::from_str(&self.text).map_err(|e| ExperimentError::Toml {
-            at: self.at(e.span().unwrap_or(0..0)),
-            message: e.message().trim().to_string(),
+        toml::from_str(&self.text).map_err(|e| {
+            let span = e.span().unwrap_or(0..0);
+            ExperimentError::Toml {
+                message: self.type_hint(span.clone(), e.message().trim()),
+                at: self.at(span),
+            }
         })
     }
 
@@ -105,6 +108,53 @@ impl Sidecar {
     /// A path written in the TOML, relative to the TOML's folder.
     pub fn relative_path(&self, path: &str) -> PathBuf {
         self.file.parent().unwrap_or(Path::new(".")).join(path)
+    }
+
+    /// The file the `data` key names, relative to the TOML's folder; a single file that
+    /// does not exist is an error at the key (a pattern or folder is expanded later).
+    pub fn data_path(&self, data: &Spanned<String>) -> Result<PathBuf, ExperimentError> {
+        let path = self.relative_path(data.get_ref());
+        if path.exists() || super::pattern::is_many(&path) {
+            return Ok(path);
+        }
+        Err(self.invalid(
+            "data",
+            data.span(),
+            format!(
+                "no file {}: the path is relative to the folder of this TOML ({}); was the TOML copied or moved without its data?",
+                path.display(),
+                self.file.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new(".")).display()
+            ),
+        ))
+    }
+
+    /// The TOML's type error, with the unit a bare number probably lacked
+    /// (`diameter = 20`: write `"20 mm"`).
+    fn type_hint(&self, span: Range<usize>, message: &str) -> String {
+        let Some(number) = message
+            .strip_prefix("invalid type: integer `")
+            .or_else(|| message.strip_prefix("invalid type: floating point `"))
+            .and_then(|m| m.split_once("`, expected a string"))
+            .map(|(n, _)| n)
+        else {
+            return message.to_string();
+        };
+        let line = self.text[..span.start.min(self.text.len())]
+            .rsplit('\n')
+            .next()
+            .unwrap_or("");
+        let key = line
+            .split('=')
+            .next()
+            .unwrap_or("")
+            .trim()
+            .trim_start_matches('{')
+            .trim();
+        let key = key.rsplit([',', '{', ' ']).next().unwrap_or(key);
+        match unit_for(key) {
+            Some(unit) => format!("{message}: a quantity is a string with its unit, e.g. `{key} = \"{number} {unit}\"`"),
+            None => format!("{message}: a quantity is a string with its unit, e.g. \"{number} <unit>\""),
+        }
     }
 
     pub fn invalid(
@@ -351,4 +401,27 @@ fn implausible(
         name,
         problem,
     }
+}
+
+/// The unit a quantity key is usually written in, for the hint on a bare number.
+fn unit_for(key: &str) -> Option<&'static str> {
+    Some(match key {
+        "temperature" => "K",
+        "nominal_strain_rate" => "1/s",
+        "elastic_modulus" => "GPa",
+        "density" => "kg/m^3",
+        "wave_speed" => "m/s",
+        "excitation" => "V",
+        "area" => "mm^2",
+        "time_min" | "time_max" => "s",
+        "incident_gauge_delay" | "transmitted_gauge_delay" => "us",
+        k if k == "diameter"
+            || k == "length"
+            || k.ends_with("_length")
+            || k.ends_with("_to_specimen") =>
+        {
+            "mm"
+        }
+        _ => return None,
+    })
 }

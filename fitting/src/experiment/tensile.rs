@@ -133,7 +133,7 @@ impl TensileExperiment {
         let sidecar = Sidecar::read(toml_file)?;
         let spec: TensileFile = sidecar.parse_kind("tensile")?;
         let geometry = Geometry::read(&sidecar, spec.geometry.as_ref())?;
-        let data = sidecar.relative_path(spec.data.get_ref());
+        let data = sidecar.data_path(&spec.data)?;
         let name = spec.name.clone().unwrap_or_else(|| {
             toml_file
                 .file_stem()
