@@ -79,8 +79,28 @@ fn metadata(bar: &fitting::experiment::Bar, specimen_mm: (f64, f64)) -> Vec<(Str
     rows
 }
 
+/// How the record's text is stored.
+#[derive(Clone, Copy)]
+enum Encoding {
+    /// As published: one byte per character.
+    Latin1,
+    /// UTF-8 behind a byte-order mark.
+    Utf8Bom,
+    /// UTF-8 after a conversion that replaced ° and µ by U+FFFD.
+    Replaced,
+}
+
 /// Write `exp` as a LANL raw record (compression positive, volts) and its TOML.
 fn write_record(dir: &Path, exp: &ShpbExperiment, polarity: Option<&str>) -> PathBuf {
+    write_encoded(dir, exp, polarity, Encoding::Latin1)
+}
+
+fn write_encoded(
+    dir: &Path,
+    exp: &ShpbExperiment,
+    polarity: Option<&str>,
+    encoding: Encoding,
+) -> PathBuf {
     std::fs::create_dir_all(dir).unwrap();
     let volts_per_strain = -ARMS * GAUGE_FACTOR * EXCITATION_V * GAIN / 4.0;
     let rows = metadata(
@@ -110,11 +130,15 @@ fn write_record(dir: &Path, exp: &ShpbExperiment, polarity: Option<&str>) -> Pat
         let (key, value) = rows.get(k).cloned().unwrap_or_default();
         text.push_str(&format!("{key}\t{value}\t{a}\t{b}\r\n"));
     }
-    let latin1: Vec<u8> = text
-        .chars()
-        .map(|c| u8::try_from(u32::from(c)).unwrap())
-        .collect();
-    std::fs::write(dir.join("record.raw"), latin1).unwrap();
+    let bytes: Vec<u8> = match encoding {
+        Encoding::Latin1 => text
+            .chars()
+            .map(|c| u8::try_from(u32::from(c)).unwrap())
+            .collect(),
+        Encoding::Utf8Bom => [b"\xEF\xBB\xBF".as_slice(), text.as_bytes()].concat(),
+        Encoding::Replaced => text.replace(['\u{b0}', '\u{b5}'], "\u{FFFD}").into_bytes(),
+    };
+    std::fs::write(dir.join("record.raw"), bytes).unwrap();
     let polarity = polarity.map_or(String::new(), |p| format!("polarity = \"{p}\"\n"));
     let toml = format!(
         "kind = \"shpb\"\nformat = \"lanl-raw\"\ndata = \"record.raw\"\n{polarity}active_arms = 2\n"
@@ -164,6 +188,36 @@ fn a_lanl_raw_record_reads_back_and_processes_as_its_source() {
     let unflipped = write_record(&dir, exp, None);
     let e = analyze(&ShpbExperiment::load(&unflipped).unwrap()).unwrap_err();
     assert!(matches!(e, ShpbError::TensileIncidentPulse { .. }), "{e}");
+}
+
+/// The same record in UTF-8 with a byte-order mark, and with ° and µ replaced by U+FFFD
+/// (as a real published record arrives), reads as the Latin-1 original, with notes.
+#[test]
+fn a_lanl_raw_record_in_utf8_or_with_replaced_unit_characters_reads_the_same() {
+    let synthetic = SyntheticShpb::generate(&SyntheticSetup::steel_945_like(8));
+    let exp = &synthetic.experiment;
+    let read = |name: &str, encoding: Encoding| {
+        let toml = write_encoded(&temp_dir(name), exp, Some("compression-positive"), encoding);
+        ShpbExperiment::load(&toml).unwrap_or_else(|e| panic!("{name}: {e}"))
+    };
+    let original = read("lanl_latin1", Encoding::Latin1);
+    for (name, encoding, said) in [
+        (
+            "lanl_bom",
+            Encoding::Utf8Bom,
+            "read as UTF-8 with a byte-order mark",
+        ),
+        ("lanl_replaced", Encoding::Replaced, "read as \"µs\""),
+    ] {
+        let e = read(name, encoding);
+        assert_eq!(e.incident, original.incident, "{name}");
+        assert_eq!(e.temperature_k, original.temperature_k, "{name}");
+        assert_eq!(e.bar, original.bar, "{name}");
+        let notes = e.notes.join("\n");
+        assert!(notes.contains(said), "{name}: {notes}");
+    }
+    let replaced = read("lanl_replaced2", Encoding::Replaced).notes.join("\n");
+    assert!(replaced.contains("`Test Temperature(\u{FFFD}C)` has a replaced character (U+FFFD) in its unit, read as \"°C\""), "{replaced}");
 }
 
 #[test]

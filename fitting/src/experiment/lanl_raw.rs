@@ -1,5 +1,8 @@
 //! The "LANL standard" raw SHPB record (the format lanl/HopPyBar reads): tab-separated
-//! text, CRLF or LF line ends, Latin-1 bytes (° and µ in key names).
+//! text, CRLF or LF line ends, ° and µ in key names. Files arrive in Latin-1 (as
+//! published), in UTF-8 with or without a byte-order mark, and with the unit characters
+//! replaced by U+FFFD after a wrong conversion: `Time(\u{FFFD}s)` can only be µs and
+//! `Temperature(\u{FFFD}C)` only °C, so these are read as such, each with a note.
 //!
 //! Columns 1-2 of the leading lines are key/value metadata: the test (`Test Loading`,
 //! `Initial Sample Diameter(mm)`, `Initial Sample Length(mm)`, `Test Temperature(°C)`,
@@ -43,6 +46,46 @@ pub struct RawRecord {
     /// Amplifier output of the incident and transmitted gauges [V].
     pub incident_v: Vec<f64>,
     pub transmitted_v: Vec<f64>,
+    /// What the reader decided about the text: its encoding, repaired unit characters.
+    pub notes: Vec<String>,
+}
+
+/// The file's text: UTF-8 (a byte-order mark dropped) when the bytes are valid UTF-8,
+/// else Latin-1, in which every byte is the code point of its value.
+fn decode(bytes: &[u8], notes: &mut Vec<String>) -> String {
+    let (bytes, bom) = match bytes.strip_prefix(b"\xEF\xBB\xBF") {
+        Some(rest) => (rest, true),
+        None => (bytes, false),
+    };
+    match std::str::from_utf8(bytes) {
+        Ok(text) => {
+            if bom || !text.is_ascii() {
+                let mark = if bom { " with a byte-order mark" } else { "" };
+                notes.push(format!("read as UTF-8{mark}"));
+            }
+            text.to_string()
+        }
+        Err(_) => bytes.iter().map(|&b| char::from(b)).collect(),
+    }
+}
+
+/// A key's unit with a replaced unit character (U+FFFD) restored where only one reading
+/// is possible: before `s` the prefix µ, before `C` or `F` the degree sign.
+fn repair_unit(key: &str, unit: String, line: usize, notes: &mut Vec<String>) -> String {
+    if !unit.contains('\u{FFFD}') {
+        return unit;
+    }
+    let repaired = match unit.as_str() {
+        "\u{FFFD}s" => "µs",
+        "\u{FFFD}C" => "°C",
+        "\u{FFFD}F" => "°F",
+        _ => return unit,
+    };
+    notes.push(format!(
+        "line {line}: `{}` has a replaced character (U+FFFD) in its unit, read as \"{repaired}\"",
+        key.trim()
+    ));
+    repaired.to_string()
 }
 
 /// First line of the samples (1-based): after the names, t0 and dt.
@@ -59,9 +102,11 @@ impl RawRecord {
             .check(size as f64, || file.display().to_string())
             .map_err(|e| invalid(file, 1, 1, "file", e.to_string()))?;
         let bytes = std::fs::read(file).map_err(io)?;
-        // Latin-1: every byte is the code point of the same value.
-        let text: String = bytes.iter().map(|&b| char::from(b)).collect();
-        parse(&text, file)
+        let mut notes = Vec::new();
+        let text = decode(&bytes, &mut notes);
+        let mut record = parse(&text, file, &mut notes)?;
+        record.notes = notes;
+        Ok(record)
     }
 
     /// The entry named `name` (without unit), or an error naming the key that is missing.
@@ -267,7 +312,7 @@ fn split_unit(key: &str) -> (String, String) {
     }
 }
 
-fn parse(text: &str, file: &Path) -> Result<RawRecord, ExperimentError> {
+fn parse(text: &str, file: &Path, notes: &mut Vec<String>) -> Result<RawRecord, ExperimentError> {
     let mut metadata = Vec::new();
     let mut columns: [Vec<(usize, &str)>; 2] = [Vec::new(), Vec::new()];
     for (k, raw_line) in text.lines().enumerate() {
@@ -276,6 +321,7 @@ fn parse(text: &str, file: &Path) -> Result<RawRecord, ExperimentError> {
         if let (Some(key), Some(value)) = (fields.first(), fields.get(1)) {
             if !key.trim().is_empty() {
                 let (name, unit) = split_unit(key);
+                let unit = repair_unit(key, unit, line, notes);
                 metadata.push(Entry {
                     name,
                     unit,
@@ -373,5 +419,6 @@ fn parse(text: &str, file: &Path) -> Result<RawRecord, ExperimentError> {
         dt_s: incident.1,
         incident_v: incident.2,
         transmitted_v: transmitted.2,
+        notes: Vec::new(),
     })
 }

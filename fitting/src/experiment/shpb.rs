@@ -620,7 +620,7 @@ fn load_lanl(sidecar: &Sidecar, toml_file: &Path) -> Result<ShpbExperiment, Expe
     let data_file = sidecar.data_path(&spec.data)?;
     let raw = RawRecord::read(&data_file)?;
     raw.check_compression()?;
-    let mut notes = Vec::new();
+    let mut notes = raw.notes.clone();
     let bar = raw.bar(&mut notes)?;
     let scale = sign * 4.0 / f64::from(arms);
     let incident =
