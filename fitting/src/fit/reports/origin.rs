@@ -73,7 +73,10 @@ impl FitOrigin {
                 report.display()
             );
         };
-        let Some(rates) = span(r.experiments.iter().map(|e| e.rate_per_s)) else {
+        let (Some(rates), Some(temperatures)) = (
+            span(r.experiments.iter().map(|e| e.rate_per_s)),
+            span(r.experiments.iter().map(|e| e.temperature_k)),
+        ) else {
             bail!("{}: the report lists no experiments", report.display());
         };
         let mut fitted: Vec<String> = r.stages.iter().flat_map(|s| s.free.clone()).collect();
@@ -87,7 +90,7 @@ impl FitOrigin {
             fitted,
             experiments: r.experiments.len(),
             rates_per_s: rates,
-            temperatures_k: span(r.experiments.iter().map(|e| e.temperature_k)).unwrap_or(rates),
+            temperatures_k: temperatures,
             strains: span(
                 r.experiments
                     .iter()

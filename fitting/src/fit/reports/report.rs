@@ -185,6 +185,10 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
         .iter()
         .map(|s| {
             let best = &s.runs[s.best];
+            let stopped_at = at_bounds(set, &s.free, &s.values);
+            let converged = best.converged
+                && stopped_at.is_empty()
+                && s.correlation.iter().flatten().all(|r| r.is_finite());
             StageRow {
                 free: s.free.clone(),
                 experiments: s
@@ -225,7 +229,7 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
                     })
                     .collect(),
                 not_identified: identifiability::warnings(&s.free, &s.correlation),
-                at_bounds: at_bounds(set, &s.free, &s.values),
+                at_bounds: stopped_at,
                 objective: s.cost,
                 samples: s.samples,
                 starts: s.runs.len(),
@@ -235,9 +239,7 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
                 iterations: s.runs.iter().map(|r| r.iterations).sum(),
                 wall_time_s: s.wall_s,
                 termination: best.termination.clone(),
-                converged: best.converged
-                    && at_bounds(set, &s.free, &s.values).is_empty()
-                    && s.correlation.iter().flatten().all(|r| r.is_finite()),
+                converged,
             }
         })
         .collect();
