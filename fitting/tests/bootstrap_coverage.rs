@@ -135,7 +135,10 @@ fn bootstrap_intervals_cover_the_truth_and_jtj_intervals_do_not() {
     let t0 = std::time::Instant::now();
     for seed in 0..seeds as u64 {
         let set = population(seed);
-        let fit = run_fit(&set, Optimizer::LmExact, &|_, _, _| {}).unwrap();
+        let fit = run_fit(&set, Optimizer::LmExact, &|_| {
+            std::ops::ControlFlow::Continue(())
+        })
+        .unwrap();
         assert!(
             fit.stages[0].runs[0].converged,
             "seed {seed}: the fit converged"

@@ -64,7 +64,10 @@ fn staged_fit_recovers_the_truth() {
             experiments: vec![block("shpb_573K")],
         },
     ];
-    let result = run_fit(&set, Optimizer::LmExact, &|_, _, _| {}).unwrap();
+    let result = run_fit(&set, Optimizer::LmExact, &|_| {
+        std::ops::ControlFlow::Continue(())
+    })
+    .unwrap();
     for (stage, s) in result.stages.iter().enumerate() {
         let best = &s.runs[s.best];
         assert!(best.converged, "stage {}: {}", stage + 1, best.termination);

@@ -89,7 +89,8 @@ pub fn fit_charts(dir: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
     }
     conv.write_png(&dir.join("convergence.png"))?;
     for (si, s) in result.stages.iter().enumerate() {
-        if s.free.len() > 1 {
+        // An interrupted stage has no correlations.
+        if s.free.len() > 1 && !s.correlation.is_empty() {
             correlation_png(
                 &dir.join(format!("correlation_stage{}.png", si + 1)),
                 &s.free,

@@ -2,13 +2,16 @@
 //! the report, write `report.toml`, per-experiment CSVs and charts to `--out`.
 //! `--compare` also runs Nelder-Mead, LM with the exact Jacobian and LM with finite
 //! differences on the same set and charts objective against evaluations and wall time.
+//! Progress shows stage, start, iteration, objective, elapsed time and an estimate of the
+//! iterations left; Ctrl-C (or SIGTERM) stops at the next evaluation and writes a partial
+//! report marked interrupted.
 
 use crate::charts::fit as fit_charts;
 use crate::cli::progress::ProgressLine;
 use anyhow::Result;
 use fitting::fit::objective::Block;
-use fitting::fit::optimize::run::{run_fit, FitResult, Optimizer};
-use fitting::fit::optimize::trace::HistoryPoint;
+use fitting::fit::optimize::estimate::remaining_iterations;
+use fitting::fit::optimize::run::{run_fit, FitProgress, FitResult, Optimizer};
 use fitting::fit::reports::report::{read_parameters, table, write_files};
 use fitting::fit::reports::study_report::{
     bootstrap_table, cross_validation_table, write_bootstrap, write_cross_validation,
@@ -18,7 +21,10 @@ use fitting::fit::statistics::bootstrap::bootstrap;
 use fitting::fit::statistics::cross_validation::leave_one_group_out;
 use fitting::fit::statistics::scatter::scatter;
 use materials::material::Model;
+use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Mutex;
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -122,24 +128,71 @@ pub fn validate(file: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
     Ok(())
 }
 
-/// Fit a set with progress per stage and start on standard error.
-fn fit_with_progress(set: &FitSet, optimizer: Optimizer) -> Result<FitResult> {
+/// One progress line of a fit: where it is, the objective, the time, and (Levenberg-
+/// Marquardt) an estimate of the iterations left from the best objective after each
+/// iteration so far (`costs`).
+fn progress_text(f: &FitProgress, costs: &[f64], ftol: f64) -> String {
+    let p = f.point;
+    let step = match p.iteration {
+        Some(k) => format!("iteration {k}"),
+        None => format!("evaluation {}", p.evaluations),
+    };
+    let estimate = match (p.iteration, remaining_iterations(costs, ftol)) {
+        (Some(_), Some(0)) => "; at the tolerance".to_string(),
+        (Some(k), Some(left)) if k > 0 => format!(
+            "; about {left} more iteration(s), ~{:.0} s, to the tolerance",
+            left as f64 * p.wall_s / k as f64
+        ),
+        _ => String::new(),
+    };
+    format!(
+        "  stage {}/{} start {}/{}: {step}, S = {:.6e}, {:.1} s, {} evaluations + {} Jacobians{estimate}",
+        f.stage + 1,
+        f.stages,
+        f.start + 1,
+        f.starts,
+        p.cost,
+        p.wall_s,
+        p.evaluations,
+        p.jacobians,
+    )
+}
+
+/// Fit a set with progress on standard error; `stop` ends the fit at its next evaluation.
+fn fit_with_progress(set: &FitSet, optimizer: Optimizer, stop: &AtomicBool) -> Result<FitResult> {
     let line = ProgressLine::default();
-    let progress = |stage: usize, start: usize, p: &HistoryPoint| {
-        let text = format!(
-            "  stage {} start {}: {:>5} evaluations, {:>4} Jacobians, {:>7.2} s, S = {:.6e}",
-            stage + 1,
-            start + 1,
-            p.evaluations,
-            p.jacobians,
-            p.wall_s,
-            p.cost
-        );
-        line.show(&format!("{stage}/{start}"), &text);
+    // Best objective at the end of each iteration of the current stage and start.
+    let costs: Mutex<(String, Vec<f64>)> = Mutex::default();
+    let progress = |f: &FitProgress| {
+        let key = format!("{}/{}", f.stage, f.start);
+        let mut c = costs.lock().unwrap();
+        if c.0 != key {
+            *c = (key.clone(), Vec::new());
+        }
+        let k = f.point.iteration.unwrap_or(0);
+        c.1.resize(k + 1, f.point.cost);
+        c.1[k] = f.point.cost;
+        line.show(&key, &progress_text(f, &c.1, set.ftol));
+        match stop.load(Ordering::Relaxed) {
+            true => ControlFlow::Break(()),
+            false => ControlFlow::Continue(()),
+        }
     };
     let result = run_fit(set, optimizer, &progress);
     line.finish();
     result
+}
+
+/// After the fit's report is written, an interrupt during a study ends the process: the
+/// study has no partial form.
+fn quit_if_stopped(stop: &AtomicBool, study: &str, out: &Path) {
+    if stop.load(Ordering::Relaxed) {
+        eprintln!(
+            "interrupted during the {study}: the fit's report is in {}, the {study} is not written",
+            out.display()
+        );
+        std::process::exit(130);
+    }
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -154,21 +207,30 @@ pub fn run(args: Args) -> Result<()> {
         }
     }
     let optimizer = Optimizer::parse(args.optimizer.as_deref().unwrap_or(&set.optimizer))?;
+    let stop = crate::cli::interrupt::interrupt_flag()?;
     eprintln!(
         "fitting {} ({} experiments)",
         args.set.display(),
         set.blocks.len()
     );
-    let result = fit_with_progress(&set, optimizer)?;
+    let result = fit_with_progress(&set, optimizer, &stop)?;
     print!("{}", table(&set, &result));
     write_files(&args.out, &set, &result)?;
     fit_charts::fit_charts(&args.out, &set, &result)?;
+    if result.interrupted {
+        anyhow::bail!(
+            "{}: the fit was interrupted; the partial report (best values so far, marked interrupted) is in {}",
+            args.set.display(),
+            args.out.display()
+        );
+    }
     if !args.allow_poor_fit {
         refuse_poor_fit(&args.set, &set, &result)?;
     }
     if let Some(samples) = args.bootstrap {
         let line = ProgressLine::default();
         let report = |b: usize| {
+            quit_if_stopped(&stop, "bootstrap", &args.out);
             let text = format!("  bootstrap sample {}/{samples}", b + 1);
             line.show(&(10 * b / samples).to_string(), &text);
         };
@@ -180,7 +242,10 @@ pub fn run(args: Args) -> Result<()> {
         fit_charts::scatter_charts(&args.out, &set, &result.predictions, Some(&b))?;
     }
     if args.cross_validate {
-        let report = |k: usize, g: &str| eprintln!("  fold {}: without {g}", k + 1);
+        let report = |k: usize, g: &str| {
+            quit_if_stopped(&stop, "cross-validation", &args.out);
+            eprintln!("  fold {}: without {g}", k + 1)
+        };
         let folds = leave_one_group_out(&set, &result.material, &report)?;
         print!("{}", cross_validation_table(&set, &folds));
         write_cross_validation(&args.out, &set, &folds)?;
@@ -195,7 +260,10 @@ pub fn run(args: Args) -> Result<()> {
             eprintln!("comparison: {opt:?}");
             let mut single = FitSet::load(&args.set)?;
             single.starts = 1;
-            let r = fit_with_progress(&single, opt)?;
+            let r = fit_with_progress(&single, opt, &stop)?;
+            if r.interrupted {
+                anyhow::bail!("the comparison was interrupted during {opt:?}");
+            }
             runs.push(r);
         }
         let summary = fit_charts::comparison(&args.out, &runs)?;

@@ -6,6 +6,7 @@ pub mod bench_small;
 pub mod drive;
 pub mod export;
 pub mod fit;
+pub mod interrupt;
 pub mod kernels;
 pub mod predict;
 pub mod progress;

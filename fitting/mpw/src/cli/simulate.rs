@@ -9,8 +9,7 @@ use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::atomic::Ordering;
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -65,7 +64,7 @@ pub fn run(args: Args) -> Result<()> {
             bar.suspend(|| eprintln!("warning: {risk}"));
         }
     };
-    let stop = interrupt_flag()?;
+    let stop = crate::cli::interrupt::interrupt_flag()?;
     let summary = mpm_core::run::run_scene(scene, &out, warn, |t, end| {
         bar.set_position((1000.0 * t / end) as u64);
         bar.set_message(format!("{t:.3e} s"));
@@ -96,16 +95,6 @@ pub fn run(args: Args) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// A flag that Ctrl-C (or SIGTERM, SIGHUP) sets, so that a stopped run still writes its
-/// last state, results and chart.
-fn interrupt_flag() -> Result<Arc<AtomicBool>> {
-    let flag = Arc::new(AtomicBool::new(false));
-    let set = flag.clone();
-    ctrlc::set_handler(move || set.store(true, Ordering::Relaxed))
-        .context("installing the Ctrl-C handler")?;
-    Ok(flag)
 }
 
 /// Chart kinetic, internal and total energy from a history file.

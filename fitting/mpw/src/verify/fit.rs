@@ -34,7 +34,9 @@ pub const RECOVERY_TOLERANCE: [(&str, f64); 5] = [
 /// Fit the default set with LM (exact Jacobian) and compare with its `[truth]`.
 pub fn recovery_cases(set_file: &Path) -> Result<Vec<Row>> {
     let set = FitSet::load(set_file)?;
-    let result = run_fit(&set, Optimizer::LmExact, &|_, _, _| {})?;
+    let result = run_fit(&set, Optimizer::LmExact, &|_| {
+        std::ops::ControlFlow::Continue(())
+    })?;
     let mut rows = Vec::new();
     for (name, tol) in RECOVERY_TOLERANCE {
         rows.push(Row::relative(
@@ -79,7 +81,9 @@ pub const LEFT_OUT_RMS: f64 = 0.05;
 pub fn leave_one_rate_out_cases(set_file: &Path) -> Result<Vec<Row>> {
     let mut set = FitSet::load(set_file)?;
     set.starts = 1;
-    let fit = run_fit(&set, Optimizer::LmExact, &|_, _, _| {})?;
+    let fit = run_fit(&set, Optimizer::LmExact, &|_| {
+        std::ops::ControlFlow::Continue(())
+    })?;
     let folds = leave_one_group_out(&set, &fit.material, &|_, _| {})?;
     let quasi_static = |f: &Fold| set.blocks[f.out_of_sample.group.members[0]].rate_per_s < 1.0;
     Ok(folds
@@ -151,7 +155,9 @@ pub fn mpm_synthetic_cases(data: &VerifyData) -> Result<Vec<Row>> {
 /// MPM-level fit of the same set takes minutes and is not a row (README).
 pub fn steel_945_cases(set_file: &Path) -> Result<Vec<Row>> {
     let set = FitSet::load(set_file)?;
-    let result = run_fit(&set, Optimizer::LmExact, &|_, _, _| {})?;
+    let result = run_fit(&set, Optimizer::LmExact, &|_| {
+        std::ops::ControlFlow::Continue(())
+    })?;
     Ok(set
         .blocks
         .iter()

@@ -6,10 +6,11 @@
 //!
 //! Stops when the relative decrease of S over an accepted step is below `ftol`, the step
 //! is below `xtol` (relative to ‖u‖), the scaled gradient ‖Jᵀr‖∞ is below `gtol`, λ
-//! exceeds 1e16, or after `max_iterations`.
+//! exceeds 1e16, or after `max_iterations`; or when the progress callback asks it to stop
+//! (then at the best point evaluated so far, `interrupted`).
 
 use crate::fit::objective::{cost, JacobianKind, Objective};
-use crate::fit::optimize::trace::{HistoryPoint, OptimResult, Recorder};
+use crate::fit::optimize::trace::{OptimResult, Progress, Recorder, INTERRUPTED};
 use anyhow::Result;
 use nalgebra::{DMatrix, DVector};
 
@@ -39,9 +40,10 @@ pub fn levenberg_marquardt(
     u0: &[f64],
     kind: JacobianKind,
     options: &LmOptions,
-    progress: &dyn Fn(&HistoryPoint),
+    progress: Progress,
 ) -> Result<OptimResult> {
     let mut rec = Recorder::new(progress);
+    rec.begin_iteration(0);
     // A cheap Jacobian comes with every trial point; else only with accepted ones.
     let with_trials = objective.jacobian_is_cheap(kind);
     let (r0, j0) = objective.residuals_and_jacobian(u0, kind)?;
@@ -49,7 +51,7 @@ pub fn levenberg_marquardt(
     let mut r = DVector::from_vec(r0);
     let mut jac: DMatrix<f64> = j0;
     let mut s = cost(r.as_slice());
-    rec.record(objective.counts(), s);
+    rec.record(objective.counts(), s, u0);
     let p = u.len();
     let mut lambda = options.lambda0;
     let mut nu = 2.0;
@@ -57,8 +59,9 @@ pub fn levenberg_marquardt(
     let mut termination = format!("maximum iterations ({})", options.max_iterations);
     let mut converged = false;
     let mut iterations = 0;
-    while iterations < options.max_iterations {
+    while iterations < options.max_iterations && !rec.stopped() {
         iterations += 1;
+        rec.begin_iteration(iterations);
         let a = jac.transpose() * &jac;
         let g = jac.transpose() * &r;
         if g.amax() < options.gtol {
@@ -100,7 +103,10 @@ pub fn levenberg_marquardt(
         let accepted = match trial {
             Ok((r_new, j_new)) => {
                 let s_new = cost(&r_new);
-                rec.record(objective.counts(), s_new);
+                rec.record(objective.counts(), s_new, u_new.as_slice());
+                if rec.stopped() {
+                    break;
+                }
                 let rho = (s - s_new) / predicted;
                 if rho > 0.0 && s_new.is_finite() {
                     let decrease = s - s_new;
@@ -140,6 +146,12 @@ pub fn levenberg_marquardt(
             }
         }
     }
+    let interrupted = rec.stopped();
+    if interrupted {
+        let (best, s_best) = rec.best();
+        (u, s) = (DVector::from_column_slice(best), s_best);
+        (termination, converged) = (INTERRUPTED.to_string(), false);
+    }
     let name = match kind {
         _ if with_trials => "Levenberg-Marquardt (exact AD Jacobian)",
         JacobianKind::Exact => {
@@ -154,6 +166,7 @@ pub fn levenberg_marquardt(
         iterations,
         termination,
         converged,
+        interrupted,
         wall_s: rec.elapsed(),
         history: rec.history,
     })

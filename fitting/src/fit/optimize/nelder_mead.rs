@@ -1,10 +1,12 @@
 //! Nelder-Mead (argmin 0.11) on S(u) = rᵀr in the unbounded coordinates u; works with any
 //! model level since it needs no derivatives. Initial simplex: u0 and u0 + `step` e_k.
 //! Stops when the standard deviation of S over the simplex is below `sd_tolerance` or
-//! after `max_iterations`. A failed model run counts as S = +∞ (the point is rejected).
+//! after `max_iterations`, or when the progress callback asks it to stop (then at the best
+//! point evaluated so far, `interrupted`). A failed model run counts as S = +∞ (the point
+//! is rejected).
 
 use crate::fit::objective::{cost, Objective};
-use crate::fit::optimize::trace::{HistoryPoint, OptimResult, Recorder};
+use crate::fit::optimize::trace::{OptimResult, Progress, Recorder, INTERRUPTED};
 use anyhow::{anyhow, Result};
 use argmin::core::{CostFunction, Executor, State, TerminationReason, TerminationStatus};
 use argmin::solver::neldermead::NelderMead;
@@ -28,12 +30,12 @@ impl Default for NmOptions {
     }
 }
 
-struct Problem<'a, 'p> {
+struct Problem<'a, 'r, 'p> {
     objective: &'a Objective<'a>,
-    recorder: Mutex<Recorder<'p>>,
+    recorder: &'r Mutex<Recorder<'p>>,
 }
 
-impl CostFunction for Problem<'_, '_> {
+impl CostFunction for Problem<'_, '_, '_> {
     type Param = Vec<f64>;
     type Output = f64;
 
@@ -44,8 +46,12 @@ impl CostFunction for Problem<'_, '_> {
             .map(|r| cost(&r))
             .unwrap_or(f64::INFINITY);
         let counts = self.objective.counts();
-        self.recorder.lock().unwrap().record(counts, s);
-        Ok(s)
+        let mut recorder = self.recorder.lock().unwrap();
+        recorder.record(counts, s, u);
+        match recorder.stopped() {
+            true => Err(anyhow!("{INTERRUPTED}")),
+            false => Ok(s),
+        }
     }
 }
 
@@ -53,7 +59,7 @@ pub fn nelder_mead(
     objective: &Objective,
     u0: &[f64],
     options: &NmOptions,
-    progress: &dyn Fn(&HistoryPoint),
+    progress: Progress,
 ) -> Result<OptimResult> {
     let mut simplex = vec![u0.to_vec()];
     for k in 0..u0.len() {
@@ -64,46 +70,49 @@ pub fn nelder_mead(
     let solver = NelderMead::new(simplex)
         .with_sd_tolerance(options.sd_tolerance)
         .map_err(|e| anyhow!("Nelder-Mead setup: {e}"))?;
+    let recorder = Mutex::new(Recorder::new(progress));
     let problem = Problem {
         objective,
-        recorder: Mutex::new(Recorder::new(progress)),
+        recorder: &recorder,
     };
-    let result = Executor::new(problem, solver)
+    let run = Executor::new(problem, solver)
         .configure(|s| s.max_iters(options.max_iterations))
         .run()
-        .map_err(|e| anyhow!("Nelder-Mead: {e}"))?;
-    let state = result.state();
-    let u = state
-        .get_best_param()
-        .ok_or_else(|| anyhow!("Nelder-Mead returned no parameters"))?
-        .clone();
-    let (termination, converged) = match state.get_termination_status() {
-        TerminationStatus::Terminated(TerminationReason::SolverConverged) => (
-            format!(
-                "simplex standard deviation of S below {:.0e}",
-                options.sd_tolerance
-            ),
-            true,
-        ),
-        TerminationStatus::Terminated(reason) => (reason.text().to_string(), false),
-        TerminationStatus::NotTerminated => ("not terminated".to_string(), false),
+        .map(|result| {
+            let state = result.state();
+            let u = state.get_best_param().cloned();
+            let (termination, converged) = match state.get_termination_status() {
+                TerminationStatus::Terminated(TerminationReason::SolverConverged) => (
+                    format!(
+                        "simplex standard deviation of S below {:.0e}",
+                        options.sd_tolerance
+                    ),
+                    true,
+                ),
+                TerminationStatus::Terminated(reason) => (reason.text().to_string(), false),
+                TerminationStatus::NotTerminated => ("not terminated".to_string(), false),
+            };
+            let end = (state.get_best_cost(), state.get_iter() as usize);
+            (u, end, termination, converged)
+        });
+    let recorder = recorder.into_inner().unwrap();
+    let (u, (cost, iterations), termination, converged, interrupted) = match run {
+        Err(_) if recorder.stopped() => {
+            let (u, cost) = recorder.best();
+            let u = Some(u.to_vec());
+            (u, (cost, 0), INTERRUPTED.to_string(), false, true)
+        }
+        Err(e) => return Err(anyhow!("Nelder-Mead: {e}")),
+        Ok((u, end, termination, converged)) => (u, end, termination, converged, false),
     };
-    let best = state.get_best_cost();
-    let iterations = state.get_iter() as usize;
-    let recorder = result
-        .problem
-        .problem
-        .unwrap()
-        .recorder
-        .into_inner()
-        .unwrap();
     Ok(OptimResult {
         optimizer: "Nelder-Mead".into(),
-        u,
-        cost: best,
+        u: u.ok_or_else(|| anyhow!("Nelder-Mead returned no parameters"))?,
+        cost,
         iterations,
         termination,
         converged,
+        interrupted,
         wall_s: recorder.elapsed(),
         history: recorder.history,
     })

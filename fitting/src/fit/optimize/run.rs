@@ -5,12 +5,16 @@
 //!
 //! Cov(p) = s² (J_pᵀ J_p)⁻¹, s² = S/(n − P), standard error √Cov_kk, correlation
 //! Cov_kl/√(Cov_kk Cov_ll), with J_p = dr/dp the exact Jacobian at the optimum.
+//!
+//! A fit its caller interrupts (the progress callback answers `Break`) ends at once: the
+//! stage under way keeps its best point so far without statistics, later starts and stages
+//! do not run, and the result says `interrupted`.
 
 use crate::fit::levels::model::{with_values, Material};
 use crate::fit::objective::{predict, Block, JacobianKind, Objective};
 use crate::fit::optimize::lm::{levenberg_marquardt, LmOptions};
 use crate::fit::optimize::nelder_mead::{nelder_mead, NmOptions};
-use crate::fit::optimize::trace::{HistoryPoint, OptimResult};
+use crate::fit::optimize::trace::{unwatched, HistoryPoint, OptimResult};
 use crate::fit::params::ParamSpace;
 use crate::fit::sets::fit_set::FitSet;
 use crate::fit::statistics::assumptions::{contact_shifts, AssumptionShift};
@@ -19,6 +23,7 @@ use materials::material::Model;
 use nalgebra::DMatrix;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
+use std::ops::ControlFlow;
 
 /// Which optimizer a stage uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -59,6 +64,23 @@ pub struct StageResult {
     pub wall_s: f64,
 }
 
+impl StageResult {
+    /// Whether the caller stopped this stage before its optimizer ended.
+    pub fn interrupted(&self) -> bool {
+        self.runs.iter().any(|r| r.interrupted)
+    }
+}
+
+/// Where a fit is, for its progress callback: stage and start (0-based) of how many, and
+/// the optimizer's latest history point.
+pub struct FitProgress<'a> {
+    pub stage: usize,
+    pub stages: usize,
+    pub start: usize,
+    pub starts: usize,
+    pub point: &'a HistoryPoint,
+}
+
 /// Fit result: stages and the final material.
 #[derive(Debug, Clone)]
 pub struct FitResult {
@@ -67,6 +89,9 @@ pub struct FitResult {
     /// Final predictions of every experiment of the set.
     pub predictions: Vec<Vec<f64>>,
     pub wall_s: f64,
+    /// The caller stopped the fit: the last stage is its best point so far, later stages
+    /// did not run.
+    pub interrupted: bool,
 }
 
 fn random_start(space: &ParamSpace, rng: &mut Pcg64) -> Vec<f64> {
@@ -84,12 +109,12 @@ fn random_start(space: &ParamSpace, rng: &mut Pcg64) -> Vec<f64> {
         .collect()
 }
 
-/// Fit `set` with `optimizer`; `progress(stage, start, point)` is called on every
-/// objective evaluation.
+/// Fit `set` with `optimizer`; `progress` sees every objective evaluation and may stop the
+/// fit.
 pub fn run_fit(
     set: &FitSet,
     optimizer: Optimizer,
-    progress: &dyn Fn(usize, usize, &HistoryPoint),
+    progress: &dyn Fn(&FitProgress) -> ControlFlow<()>,
 ) -> Result<FitResult> {
     if set.params.is_empty() {
         bail!(
@@ -130,7 +155,15 @@ pub fn run_fit(
             } else {
                 random_start(&space, &mut rng)
             };
-            let report = |p: &HistoryPoint| progress(si, start, p);
+            let report = |point: &HistoryPoint| {
+                progress(&FitProgress {
+                    stage: si,
+                    stages: set.stages.len(),
+                    start,
+                    starts: set.starts,
+                    point,
+                })
+            };
             let run = match optimizer {
                 Optimizer::LmExact => {
                     levenberg_marquardt(&objective, &u0, JacobianKind::Exact, &options, &report)
@@ -151,15 +184,25 @@ pub fn run_fit(
                 Err(e) if start > 0 => eprintln!("stage {}: start {start} failed: {e:#}", si + 1),
                 Err(e) => return Err(e),
             }
+            if runs.last().is_some_and(|r| r.interrupted) {
+                break;
+            }
         }
         let best = (0..runs.len())
             .min_by(|&a, &b| runs[a].cost.total_cmp(&runs[b].cost))
             .unwrap();
         let u = runs[best].u.clone();
         let values = space.to_bounded(&u);
-        let (r, jp) = residuals_and_jacobian_in_p(&objective, &u)?;
-        let (std_errors, correlation) = covariance(&r, &jp);
-        let contact = contact_shifts(&objective, &values, &r, &jp)?;
+        let interrupted = runs.iter().any(|r| r.interrupted);
+        let (std_errors, correlation, contact) = match interrupted {
+            true => (vec![f64::NAN; values.len()], Vec::new(), Vec::new()),
+            false => {
+                let (r, jp) = residuals_and_jacobian_in_p(&objective, &u)?;
+                let (std_errors, correlation) = covariance(&r, &jp);
+                let contact = contact_shifts(&objective, &values, &r, &jp)?;
+                (std_errors, correlation, contact)
+            }
+        };
         let (evaluations, jacobians) = objective.counts();
         let names: Vec<String> = space.names().iter().map(|s| s.to_string()).collect();
         material = with_values(&material, &space.names(), &values);
@@ -178,9 +221,13 @@ pub fn run_fit(
             wall_s: runs.iter().map(|r| r.wall_s).sum(),
             runs,
         });
+        if interrupted {
+            break;
+        }
     }
     let predictions = predict(&set.blocks.iter().collect::<Vec<_>>(), &material)?;
     Ok(FitResult {
+        interrupted: stages.iter().any(StageResult::interrupted),
         stages,
         material,
         predictions,
@@ -223,7 +270,7 @@ pub fn refit(
         &u0,
         JacobianKind::Exact,
         &LmOptions::default(),
-        &|_| {},
+        &unwatched,
     )?;
     Ok(Refit {
         values: space.to_bounded(&run.u),
@@ -241,6 +288,7 @@ pub fn run_predict(set: &FitSet, material: Material) -> Result<FitResult> {
         material,
         predictions,
         wall_s: t0.elapsed().as_secs_f64(),
+        interrupted: false,
     })
 }
 

@@ -1,6 +1,7 @@
 //! Where a fit's parameters come from, read back from its `report.toml`: the material it
 //! was fitted with, the strain rates, temperatures and strains its experiments covered,
-//! the parameter pairs the data did not identify and the parameters stopped at a bound.
+//! the parameter pairs the data did not identify, the parameters stopped at a bound and whether
+//! the fit was interrupted.
 //! A solver card carries these as comment lines (`caveats`): outside the covered ranges
 //! the parameters are an extrapolation.
 
@@ -17,6 +18,8 @@ struct ReportFile {
     stages: Vec<StageRow>,
     #[serde(default)]
     experiments: Vec<ExperimentRow>,
+    #[serde(default)]
+    interrupted: bool,
 }
 
 #[derive(Deserialize)]
@@ -52,6 +55,8 @@ pub struct FitOrigin {
     pub strains: Option<[f64; 2]>,
     pub not_identified: Vec<String>,
     pub at_bounds: Vec<String>,
+    /// The fit was stopped before it ended (a partial report).
+    pub interrupted: bool,
 }
 
 fn span(values: impl Iterator<Item = f64>) -> Option<[f64; 2]> {
@@ -103,6 +108,7 @@ impl FitOrigin {
                 .flat_map(|s| s.not_identified.clone())
                 .collect(),
             at_bounds: r.stages.iter().flat_map(|s| s.at_bounds.clone()).collect(),
+            interrupted: r.interrupted,
         })
     }
 
@@ -126,10 +132,14 @@ impl FitOrigin {
         )
     }
 
-    /// What a user of the parameters must know: the coverage, then every pair the data do
-    /// not identify and every parameter that ended on a bound.
+    /// What a user of the parameters must know: the coverage, then whether the fit was
+    /// interrupted, every pair the data do not identify and every parameter that ended on a
+    /// bound.
     pub fn caveats(&self) -> Vec<String> {
         let mut out = vec![self.coverage()];
+        if self.interrupted {
+            out.push("WARNING: the fit was interrupted: these are its best values so far, not an optimum, and later stages did not run".into());
+        }
         out.extend(self.not_identified.iter().map(|p| format!("WARNING: {p}")));
         out.extend(
             self.at_bounds
@@ -141,7 +151,7 @@ impl FitOrigin {
 
     /// Whether the caveats hold more than the coverage.
     pub fn has_warnings(&self) -> bool {
-        !self.not_identified.is_empty() || !self.at_bounds.is_empty()
+        self.interrupted || !self.not_identified.is_empty() || !self.at_bounds.is_empty()
     }
 }
 

@@ -49,6 +49,9 @@ struct StageRow {
     iterations: usize,
     wall_time_s: f64,
     termination: String,
+    /// The caller stopped the stage: its values are the best point so far, without
+    /// standard errors or correlations.
+    interrupted: bool,
     /// The optimizer converged, no parameter sits on a bound and every correlation is a
     /// number.
     converged: bool,
@@ -108,6 +111,8 @@ struct ReportFile {
     groups: Vec<GroupRow>,
     experiments: Vec<ExperimentRow>,
     total_wall_time_s: f64,
+    /// The fit was stopped before it ended (Ctrl-C): a partial report.
+    interrupted: bool,
 }
 
 fn group_rows(set: &FitSet, result: &FitResult) -> Vec<GroupRow> {
@@ -228,7 +233,10 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
                             .collect(),
                     })
                     .collect(),
-                not_identified: identifiability::warnings(&s.free, &s.correlation),
+                not_identified: match s.interrupted() {
+                    true => Vec::new(),
+                    false => identifiability::warnings(&s.free, &s.correlation),
+                },
                 at_bounds: stopped_at,
                 objective: s.cost,
                 samples: s.samples,
@@ -239,6 +247,7 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
                 iterations: s.runs.iter().map(|r| r.iterations).sum(),
                 wall_time_s: s.wall_s,
                 termination: best.termination.clone(),
+                interrupted: s.interrupted(),
                 converged,
             }
         })
@@ -263,6 +272,7 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
         groups: group_rows(set, result),
         experiments: experiment_rows(set, result),
         total_wall_time_s: result.wall_s,
+        interrupted: result.interrupted,
     }
 }
 
@@ -276,10 +286,13 @@ pub fn show(name: &str, v: f64) -> String {
     }
 }
 
-/// How a stage ended: "converged", "stopped at the bounds of A at its upper bound ..." (the
-/// bounds, not the data, decided), "NOT converged: correlations undefined ..." or "NOT
-/// converged".
+/// How a stage ended: "interrupted ...", "converged", "stopped at the bounds of A at its
+/// upper bound ..." (the bounds, not the data, decided), "NOT converged: correlations
+/// undefined ..." or "NOT converged".
 fn verdict(s: &StageRow) -> String {
+    if s.interrupted {
+        return "INTERRUPTED: the values are the best point so far, not an optimum; later stages did not run".into();
+    }
     if !s.at_bounds.is_empty() {
         return format!(
             "stopped at the bounds: {}; widen them or fix the data (a unit?)",
@@ -385,13 +398,16 @@ pub fn table(set: &FitSet, result: &FitResult) -> String {
                 "  {:<6} {:>16} {:>14} {:>16} {:>10}",
                 p.name,
                 show(&p.name, p.value),
-                show(&p.name, p.std_error),
+                match p.std_error.is_nan() {
+                    true => "-".into(),
+                    false => show(&p.name, p.std_error),
+                },
                 p.truth.map_or("-".into(), |t| show(&p.name, t)),
                 p.error_vs_truth_percent
                     .map_or("-".into(), |e| format!("{e:+.3}"))
             );
         }
-        if s.free.len() > 1 {
+        if s.free.len() > 1 && !s.correlation.is_empty() {
             let _ = writeln!(out, "  correlation:");
             let _ = write!(out, "  {:<6}", "");
             for n in &s.free {

@@ -124,7 +124,13 @@ fn fit(truth: &Material, block: &Block) -> Result<[f64; 2]> {
         ..LmOptions::default()
     };
     let u0 = space.to_unbounded(&space.starts());
-    let run = levenberg_marquardt(&objective, &u0, JacobianKind::Exact, &options, &|_| {})?;
+    let run = levenberg_marquardt(
+        &objective,
+        &u0,
+        JacobianKind::Exact,
+        &options,
+        &crate::fit::optimize::trace::unwatched,
+    )?;
     let x = space.to_bounded(&run.u);
     Ok([x[0], x[1]])
 }
