@@ -337,6 +337,9 @@ impl Material for Faulty {
     fn initial_state(&self) -> State<f64> {
         Material::initial_state(&self.model)
     }
+    fn melting_range(&self) -> Option<[f64; 2]> {
+        Material::melting_range(&self.model)
+    }
     fn update(
         &self,
         f: &Matrix3<f64>,

@@ -109,6 +109,9 @@ pub trait Material: Send + Sync {
     fn density(&self) -> f64;
     fn p_wave_modulus(&self) -> f64;
     fn initial_state(&self) -> State<f64>;
+    /// Reference and melting temperatures [θ0, θm] [K] of a model whose flow stress vanishes
+    /// at θm (Johnson-Cook's `theta0`, `theta_m`); `None` for a model without one.
+    fn melting_range(&self) -> Option<[f64; 2]>;
     fn update(
         &self,
         f: &Matrix3<f64>,
@@ -136,6 +139,12 @@ impl<T: Model<f64>> Material for T {
     }
     fn initial_state(&self) -> State<f64> {
         Model::initial_state(self)
+    }
+    fn melting_range(&self) -> Option<[f64; 2]> {
+        Some([
+            Model::param(self, "theta0")?,
+            Model::param(self, "theta_m")?,
+        ])
     }
     fn update(
         &self,

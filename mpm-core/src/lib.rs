@@ -24,6 +24,7 @@ pub mod grid;
 pub mod kinematics;
 pub mod limits;
 pub mod material_block;
+pub mod melting;
 pub mod mesh;
 pub mod parallel;
 pub mod particles;

@@ -1,11 +1,13 @@
-//! Run output: a CSV time history and particle snapshots as legacy binary VTK files
-//! (POLYDATA vertices) that ParaView opens.
+//! Run output: a CSV time history, and particle snapshots as VTK XML PolyData files
+//! (`.vtp`, one vertex per point) listed with their times in a ParaView collection
+//! (`snapshots.pvd`).
 //!
-//! History columns (each name carries its unit): t [s], kinetic, internal (stress work),
-//! external work, boundary work and energy error [J]; momentum p_i [kg m/s]; with several
-//! bodies, each body's kinetic energy kinetic_<body> [J]; per rigid body the contact force
-//! on it F_i [N] and the number of points in contact; per control point its position
-//! x_i [m]. Plane strain: per metre of thickness ([J/m], [kg/s], [N/m]).
+//! History columns, each name ending in its unit as every CSV the tools write does
+//! (`time_s`, `kinetic_j`): time [s]; kinetic, internal (stress work), external work,
+//! boundary work and energy error [J]; momentum p_i [kg m/s]; with several bodies, each
+//! body's kinetic energy `kinetic_<body>_j`; per rigid body the contact force on it F_i [N]
+//! and the number of points in contact; per control point its position x_i [m]. Plane
+//! strain: per metre of thickness (`_j_per_m`, `_kg_per_s`, `_n_per_m`).
 //! Snapshot point data: velocity [m/s], Cauchy stress σ (3×3) [Pa], von Mises stress [Pa],
 //! α [-], θ [K], J = det F [-], body index.
 
@@ -19,8 +21,8 @@ use std::path::{Path, PathBuf};
 /// Axis names of columns and results.
 pub const AXES: [&str; 3] = ["x", "y", "z"];
 
-/// Units of the history columns: plane-strain quantities are per metre of thickness,
-/// axisymmetric ones of the full ring.
+/// Units of the history columns as name suffixes: plane-strain quantities are per metre of
+/// thickness, axisymmetric ones of the full ring.
 struct Units {
     energy: &'static str,
     momentum: &'static str,
@@ -31,22 +33,22 @@ impl Units {
     fn of(kinematics: Kinematics) -> Self {
         match kinematics {
             Kinematics::PlaneStrain => Units {
-                energy: "J/m",
-                momentum: "kg/s",
-                force: "N/m",
+                energy: "j_per_m",
+                momentum: "kg_per_s",
+                force: "n_per_m",
             },
             Kinematics::Axisymmetric | Kinematics::Solid => Units {
-                energy: "J",
-                momentum: "kg m/s",
-                force: "N",
+                energy: "j",
+                momentum: "kg_m_per_s",
+                force: "n",
             },
         }
     }
 }
 
 /// Streams one history row per observed step (wrap it in `observer::Every` to thin it);
-/// flushed every row so a failed run keeps its history. Column names carry their units,
-/// e.g. `kinetic [J]`, `platen_force_z [N]`.
+/// flushed every row so a failed run keeps its history. Column names end in their units,
+/// e.g. `kinetic_j`, `platen_force_z_n`.
 pub struct HistoryWriter {
     out: BufWriter<File>,
 }
@@ -55,7 +57,7 @@ impl HistoryWriter {
     pub fn create<const D: usize>(path: &Path, solver: &Solver<D>) -> io::Result<Self> {
         let mut out = BufWriter::new(File::create(path)?);
         let u = Units::of(solver.settings.kinematics);
-        let mut cols: Vec<String> = vec!["t [s]".into()];
+        let mut cols: Vec<String> = vec!["time_s".into()];
         cols.extend(
             [
                 "kinetic",
@@ -64,23 +66,23 @@ impl HistoryWriter {
                 "boundary_work",
                 "energy_error",
             ]
-            .map(|c| format!("{c} [{}]", u.energy)),
+            .map(|c| format!("{c}_{}", u.energy)),
         );
-        cols.extend((0..D).map(|i| format!("momentum_{} [{}]", AXES[i], u.momentum)));
+        cols.extend((0..D).map(|i| format!("momentum_{}_{}", AXES[i], u.momentum)));
         if solver.blocks.len() > 1 {
             cols.extend(
                 solver
                     .blocks
                     .iter()
-                    .map(|b| format!("kinetic_{} [{}]", b.name, u.energy)),
+                    .map(|b| format!("kinetic_{}_{}", b.name, u.energy)),
             );
         }
         for r in &solver.rigid {
-            cols.extend((0..D).map(|i| format!("{}_force_{} [{}]", r.body.name, AXES[i], u.force)));
-            cols.push(format!("{}_contacts [-]", r.body.name));
+            cols.extend((0..D).map(|i| format!("{}_force_{}_{}", r.body.name, AXES[i], u.force)));
+            cols.push(format!("{}_contacts", r.body.name));
         }
         for (name, _) in &solver.control_points {
-            cols.extend((0..D).map(|i| format!("{name}_{} [m]", AXES[i])));
+            cols.extend((0..D).map(|i| format!("{name}_{}_m", AXES[i])));
         }
         writeln!(out, "{}", cols.join(","))?;
         Ok(HistoryWriter { out })
@@ -122,37 +124,67 @@ impl<const D: usize> Observer<D> for HistoryWriter {
 }
 
 /// VTK snapshots at `count` evenly spaced times up to `end` [s] (index 0 is the initial
-/// state).
+/// state), and the collection `snapshots.pvd` listing them with their times, rewritten after
+/// each snapshot so that a stopped run's collection is complete: ParaView opens it as one
+/// time series with the real times.
 pub struct SnapshotWriter {
     dir: PathBuf,
     interval: f64,
-    next: usize,
+    /// Time [s] of each snapshot written so far.
+    times: Vec<f64>,
 }
+
+/// The collection file of a run's snapshots.
+pub const COLLECTION: &str = "snapshots.pvd";
 
 impl SnapshotWriter {
     pub fn new(dir: &Path, end: f64, count: usize) -> Self {
         SnapshotWriter {
             dir: dir.into(),
             interval: end / count.max(1) as f64,
-            next: 0,
+            times: Vec::new(),
         }
     }
 
     /// Write the current state as the next snapshot whatever the time.
     pub fn write_next<const D: usize>(&mut self, s: &Solver<D>) -> io::Result<()> {
-        write_snapshot(&self.dir, self.next, s)?;
-        self.next += 1;
-        Ok(())
+        write_snapshot(&self.dir, self.times.len(), s)?;
+        self.times.push(s.time);
+        self.write_collection()
+    }
+
+    fn write_collection(&self) -> io::Result<()> {
+        let mut out = BufWriter::new(File::create(self.dir.join(COLLECTION))?);
+        writeln!(out, "<?xml version=\"1.0\"?>")?;
+        writeln!(
+            out,
+            "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">"
+        )?;
+        writeln!(out, "  <Collection>")?;
+        for (k, t) in self.times.iter().enumerate() {
+            writeln!(
+                out,
+                "    <DataSet timestep=\"{t:e}\" group=\"\" part=\"0\" file=\"{}\"/>",
+                snapshot_name(k)
+            )?;
+        }
+        writeln!(out, "  </Collection>\n</VTKFile>")?;
+        out.flush()
     }
 }
 
 impl<const D: usize> Observer<D> for SnapshotWriter {
     fn observe(&mut self, s: &Solver<D>) -> Verdict {
-        if s.time >= self.next as f64 * self.interval - 0.5 * s.dt {
+        if s.time >= self.times.len() as f64 * self.interval - 0.5 * s.dt {
             self.write_next(s)?;
         }
         CONTINUE
     }
+}
+
+/// The file name of snapshot `index`.
+pub fn snapshot_name(index: usize) -> String {
+    format!("snapshot_{index:05}.vtp")
 }
 
 /// The first three components of `x`, padded with zeros.
@@ -160,61 +192,118 @@ fn pad(x: &[f64]) -> [f64; 3] {
     std::array::from_fn(|i| x.get(i).copied().unwrap_or(0.0))
 }
 
-fn be(out: &mut impl Write, values: impl IntoIterator<Item = f64>) -> io::Result<()> {
-    for v in values {
-        out.write_all(&(v as f32).to_be_bytes())?;
-    }
-    Ok(())
+/// One array of a snapshot: its XML attributes and its little-endian bytes.
+struct DataArray {
+    attributes: String,
+    bytes: Vec<u8>,
 }
 
-/// Write the particles of `solver` to `dir/snapshot_NNNNN.vtk`; returns the path.
+impl DataArray {
+    /// Float32 values with `components` per point.
+    fn float(name: &str, components: usize, values: impl IntoIterator<Item = f64>) -> Self {
+        let bytes = values
+            .into_iter()
+            .flat_map(|v| (v as f32).to_le_bytes())
+            .collect();
+        DataArray {
+            attributes: format!(
+                "type=\"Float32\" Name=\"{name}\" NumberOfComponents=\"{components}\""
+            ),
+            bytes,
+        }
+    }
+
+    fn int(name: &str, values: impl IntoIterator<Item = i64>) -> Self {
+        DataArray {
+            attributes: format!("type=\"Int64\" Name=\"{name}\""),
+            bytes: values.into_iter().flat_map(i64::to_le_bytes).collect(),
+        }
+    }
+}
+
+/// Write the particles of `solver` to `dir/snapshot_NNNNN.vtp` (VTK XML PolyData, one
+/// vertex per point, raw appended binary data: each array a UInt64 byte count and its
+/// bytes); the time is the field `TimeValue`. Returns the path.
 pub fn write_snapshot<const D: usize>(
     dir: &Path,
     index: usize,
     solver: &Solver<D>,
 ) -> io::Result<PathBuf> {
-    let path = dir.join(format!("snapshot_{index:05}.vtk"));
-    let mut out = BufWriter::new(File::create(&path)?);
+    let path = dir.join(snapshot_name(index));
     let p = &solver.particles;
     let n = p.len();
-    writeln!(
-        out,
-        "# vtk DataFile Version 3.0\nmpw particles t = {:e} s\nBINARY\nDATASET POLYDATA",
-        solver.time
-    )?;
-    writeln!(out, "POINTS {n} float")?;
-    for x in &p.position {
-        be(&mut out, pad(x.as_slice()))?;
-    }
-    writeln!(out, "\nVERTICES {n} {}", 2 * n)?;
-    for i in 0..n {
-        out.write_all(&1i32.to_be_bytes())?;
-        out.write_all(&(i as i32).to_be_bytes())?;
-    }
-    writeln!(out, "\nPOINT_DATA {n}\nVECTORS velocity float")?;
-    for v in &p.velocity {
-        be(&mut out, pad(v.as_slice()))?;
-    }
-    writeln!(out, "\nTENSORS stress float")?;
-    for s in &p.stress {
-        be(&mut out, s.transpose().iter().cloned())?;
-    }
-    let mut scalar = |name: &str, values: &mut dyn Iterator<Item = f64>| -> io::Result<()> {
-        writeln!(out, "\nSCALARS {name} float 1\nLOOKUP_TABLE default")?;
-        be(&mut out, values)
-    };
-    scalar("von_mises", &mut p.stress.iter().map(von_mises))?;
     let history = |f: fn(&materials::State<f64>) -> f64| {
         solver
             .blocks
             .iter()
             .flat_map(move |b| b.state.iter().map(f))
+            .collect::<Vec<f64>>()
     };
-    scalar("alpha", &mut history(|s| s.alpha))?;
-    scalar("theta", &mut history(|s| s.theta))?;
-    scalar("J", &mut p.deformation.iter().map(|f| f.determinant()))?;
     let body = |(k, b): (usize, &crate::MaterialBlock)| b.range.clone().map(move |_| k as f64);
-    scalar("body", &mut solver.blocks.iter().enumerate().flat_map(body))?;
+    let point_data = [
+        DataArray::float(
+            "velocity",
+            3,
+            p.velocity.iter().flat_map(|v| pad(v.as_slice())),
+        ),
+        DataArray::float(
+            "stress",
+            9,
+            p.stress
+                .iter()
+                .flat_map(|s| s.transpose().iter().copied().collect::<Vec<_>>()),
+        ),
+        DataArray::float("von_mises", 1, p.stress.iter().map(von_mises)),
+        DataArray::float("alpha", 1, history(|s| s.alpha)),
+        DataArray::float("theta", 1, history(|s| s.theta)),
+        DataArray::float("J", 1, p.deformation.iter().map(|f| f.determinant())),
+        DataArray::float("body", 1, solver.blocks.iter().enumerate().flat_map(body)),
+    ];
+    let points = DataArray::float(
+        "position",
+        3,
+        p.position.iter().flat_map(|x| pad(x.as_slice())),
+    );
+    let verts = [
+        DataArray::int("connectivity", 0..n as i64),
+        DataArray::int("offsets", 1..=n as i64),
+    ];
+    let mut out = BufWriter::new(File::create(&path)?);
+    let mut offset = 0;
+    let mut declare = |out: &mut BufWriter<File>, a: &DataArray| -> io::Result<()> {
+        writeln!(
+            out,
+            "        <DataArray {} format=\"appended\" offset=\"{offset}\"/>",
+            a.attributes
+        )?;
+        offset += 8 + a.bytes.len();
+        Ok(())
+    };
+    writeln!(out, "<?xml version=\"1.0\"?>")?;
+    writeln!(out, "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">")?;
+    writeln!(out, "  <PolyData>")?;
+    writeln!(out, "    <FieldData>\n      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">{:e}</DataArray>\n    </FieldData>", solver.time)?;
+    writeln!(out, "    <Piece NumberOfPoints=\"{n}\" NumberOfVerts=\"{n}\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">")?;
+    writeln!(
+        out,
+        "      <PointData Scalars=\"von_mises\" Vectors=\"velocity\" Tensors=\"stress\">"
+    )?;
+    for a in &point_data {
+        declare(&mut out, a)?;
+    }
+    writeln!(out, "      </PointData>\n      <Points>")?;
+    declare(&mut out, &points)?;
+    writeln!(out, "      </Points>\n      <Verts>")?;
+    for a in &verts {
+        declare(&mut out, a)?;
+    }
+    writeln!(out, "      </Verts>\n    </Piece>\n  </PolyData>")?;
+    write!(out, "  <AppendedData encoding=\"raw\">\n   _")?;
+    for a in point_data.iter().chain([&points]).chain(&verts) {
+        out.write_all(&(a.bytes.len() as u64).to_le_bytes())?;
+        out.write_all(&a.bytes)?;
+    }
+    writeln!(out, "\n  </AppendedData>\n</VTKFile>")?;
     out.flush()?;
     Ok(path)
 }

@@ -5,10 +5,12 @@
 //! written to `results.csv`, also after a failure. A run that would take more than
 //! `limits::TIME_STEPS` steps fails at step 0 (after the first history row). A run stopped
 //! by its caller (`progress` breaks, e.g. on Ctrl-C) ends like a failure with cause
-//! `Interrupted`: its last state written, its results collected.
+//! `Interrupted`: its last state written, its results collected. Points that reach their
+//! melting temperature are reported in the summary (`melting`), not stopped.
 
 use crate::failure::{Cause, SimulationError};
 use crate::limits::TIME_STEPS;
+use crate::melting::{Melting, MeltingWatch};
 use crate::output::{HistoryWriter, SnapshotWriter};
 use crate::results::{self, NamedResult, RestTracker};
 use crate::scene::{Scene, Simulation};
@@ -27,6 +29,8 @@ pub struct RunSummary {
     pub particles: usize,
     pub failure: Option<SimulationError>,
     pub results: Vec<NamedResult>,
+    /// Bodies with points that reached their melting temperature.
+    pub melting: Vec<Melting>,
 }
 
 /// Run `scene` writing into `dir`; `start(time_step)` is called once Δt is chosen (to warn
@@ -85,9 +89,16 @@ fn run<const D: usize>(
     history.inner.write(&solver)?;
     rest.inner.sample(&solver);
     snapshot.write_next(&solver)?;
+    let mut melting = MeltingWatch::default();
+    melting.check(&solver);
     let mut report = |s: &Solver<D>| Ok(progress(s.time, end));
-    let mut observers: [&mut dyn Observer<D>; 4] =
-        [&mut history, &mut rest, &mut snapshot, &mut report];
+    let mut observers: [&mut dyn Observer<D>; 5] = [
+        &mut history,
+        &mut rest,
+        &mut snapshot,
+        &mut melting,
+        &mut report,
+    ];
     let too_long = TIME_STEPS.check(end / time_step.dt, || {
         format!("time.end = {end:e} s at {time_step}")
     });
@@ -129,5 +140,6 @@ fn run<const D: usize>(
         particles: solver.particles.len(),
         failure,
         results,
+        melting: melting.melted(),
     })
 }

@@ -69,7 +69,7 @@ fn a_fit_report_predicts_what_the_fit_predicted() {
     assert!(!err.contains('\r'), "{err:?}");
     let lines = err
         .lines()
-        .filter(|l| l.contains("stage 1 start 1:"))
+        .filter(|l| l.contains("stage 1/1 start 1/1:"))
         .count();
     assert_eq!(lines, 1, "{err}");
     let report = fit.join("report.toml");
@@ -124,5 +124,72 @@ fn a_set_without_parameters_is_predicted_not_fitted() {
         predict.status.success(),
         "{}",
         String::from_utf8_lossy(&predict.stderr)
+    );
+}
+
+/// An MPM level whose specimen melts at the final parameters (42CrMo4 with θm = 330 K,
+/// θ0 = 293.15 K) says so on standard error, in the report and in a card exported from
+/// it; with the real θm = 1793 K it says nothing.
+#[test]
+fn an_mpm_level_with_molten_points_warns_in_the_report_and_the_card() {
+    let dir = scratch("hot");
+    let steel = std::fs::read_to_string(root().join("data/materials/42crmo4_qt660.toml")).unwrap();
+    let experiment = root()
+        .join("data/experiments/shpb_293K.toml")
+        .canonicalize()
+        .unwrap();
+    std::fs::write(
+        dir.join("set.toml"),
+        format!(
+            "name = \"molten\"\nmaterial = \"steel.toml\"\n[[experiment]]\nfile = \"{}\"\n\
+             window = [1.5e-5, 1.15e-4]\nforces = \"f2\"\nlevel = \"mpm-axisymmetric\"\nlayers = 4\n",
+            experiment.display()
+        ),
+    )
+    .unwrap();
+    let run = |theta_m: &str| {
+        let material = steel.replace("theta_m = 1793.15", &format!("theta_m = {theta_m}"));
+        std::fs::write(dir.join("steel.toml"), material).unwrap();
+        let out = mpw(&[
+            "predict",
+            dir.join("set.toml").to_str().unwrap(),
+            "--out",
+            dir.join("out").to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr).to_string();
+        assert!(out.status.success(), "{err}");
+        (
+            err,
+            std::fs::read_to_string(dir.join("out/report.toml")).unwrap(),
+        )
+    };
+    let needle = "shpb_293K: specimen: points reached the melting temperature θm = 330 K";
+    let (err, report) = run("330.0");
+    assert!(err.contains(&format!("warning: {needle}")), "{err}");
+    assert!(
+        report.contains("warnings = [\"specimen: points reached the melting"),
+        "{report}"
+    );
+    let card = mpw(&[
+        "export",
+        "--format",
+        "abaqus",
+        "--params",
+        dir.join("out/report.toml").to_str().unwrap(),
+    ]);
+    let card_text = String::from_utf8_lossy(&card.stdout);
+    let joined: String = card_text
+        .lines()
+        .filter_map(|l| l.strip_prefix("** "))
+        .collect::<Vec<_>>()
+        .join(" ");
+    assert!(
+        joined.contains("WARNING: shpb_293K: specimen: points reached"),
+        "{card_text}"
+    );
+    let (err, report) = run("1793.15");
+    assert!(
+        !err.contains("melting temperature") && report.contains("warnings = []"),
+        "{err}"
     );
 }

@@ -81,3 +81,67 @@ fn an_shpb_run_names_the_source_of_its_parameters() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A Taylor bar whose copper melts at 330 K (θ0 = 293.15 K) warns how many points reached
+/// the melting temperature, when and where; with the real θm = 1356 K it does not.
+#[test]
+fn points_that_reach_the_melting_temperature_are_warned_about() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let dir = std::env::temp_dir().join(format!("mpw-simulate-melt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let copper = std::fs::read_to_string(root.join("data/materials/ofhc_copper.toml")).unwrap();
+    let scene = std::fs::read_to_string(root.join("data/scenes/taylor_bar_axisymmetric.toml"))
+        .unwrap()
+        .replace("../materials/ofhc_copper.toml", "copper.toml")
+        .replace(
+            "spacing = 0.00036285714285714286",
+            "spacing = 0.0007257142857142857",
+        )
+        .replace("end = 80e-6", "end = 20e-6");
+    std::fs::write(dir.join("taylor.toml"), scene).unwrap();
+    let run = |theta_m: &str| {
+        let material = copper.replace("theta_m = 1356.0", &format!("theta_m = {theta_m}"));
+        std::fs::write(dir.join("copper.toml"), material).unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_mpw"))
+            .args([
+                "simulate",
+                dir.join("taylor.toml").to_str().unwrap(),
+                "--out",
+            ])
+            .arg(dir.join("out"))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr).to_string();
+        assert!(out.status.success(), "{err}");
+        err
+    };
+    let err = run("330.0");
+    let warning = err
+        .lines()
+        .find(|l| l.starts_with("warning: bar: points reached the melting temperature θm = 330 K"))
+        .unwrap_or_else(|| panic!("{err}"));
+    let number_after = |key: &str| -> f64 {
+        let rest = &warning[warning
+            .find(key)
+            .unwrap_or_else(|| panic!("{key}: {warning}"))
+            + key.len()..];
+        let end = rest
+            .find(|c: char| !(c.is_ascii_digit() || c == '.' || c == 'e' || c == '-'))
+            .unwrap();
+        rest[..end].parse().unwrap()
+    };
+    // The wall layer heats first: molten points exist, the first of them before the end.
+    assert!(number_after("first at step ") > 0.0, "{warning}");
+    assert!(number_after("(t = ") < 20e-6, "{warning}");
+    assert!(number_after("; ") >= 1.0, "{warning}");
+    // The hottest point is at the wall (y within two cells of it).
+    let at = &warning[warning.find(" at (").unwrap() + 5..];
+    let y: f64 = at[at.find(", ").unwrap() + 2..at.find(") mm").unwrap()]
+        .parse()
+        .unwrap();
+    assert!(y < 2.0 * 0.7257, "{warning}");
+    assert!(
+        !run("1356.0").contains("melting"),
+        "real copper does not melt here"
+    );
+}

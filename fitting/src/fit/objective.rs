@@ -49,6 +49,30 @@ pub struct Block {
     /// Specimen strain over the compared samples, [smallest, largest] (tensile: engineering
     /// strain; SHPB: magnitude of the true strain) [-]; NaN until the builder sets it.
     pub strain_range: [f64; 2],
+    /// SHPB: each sample's true strain and the factor from a face force to the specimen's
+    /// true stress, so that a chart draws a record as stress against strain.
+    pub stress_strain: Option<StressStrain>,
+}
+
+/// An SHPB record's samples as stress and strain: the measured true strain ε (magnitude)
+/// and σ_true = F exp(−ε)/A0 for a face force F, the current area following from constant
+/// volume (A = A0 L0/L, L = L0 exp(−ε) in compression).
+#[derive(Debug, Clone)]
+pub struct StressStrain {
+    /// True strain at each sample, compression positive [-].
+    pub strain: Vec<f64>,
+    /// exp(−ε)/A0 at each sample [1/m²].
+    pub stress_per_force: Vec<f64>,
+}
+
+impl StressStrain {
+    pub fn new(strain: Vec<f64>, area_m2: f64) -> Self {
+        let stress_per_force = strain.iter().map(|e| (-e).exp() / area_m2).collect();
+        StressStrain {
+            strain,
+            stress_per_force,
+        }
+    }
 }
 
 impl Block {
@@ -99,6 +123,7 @@ impl Block {
             metadata_source: String::new(),
             equilibrium_ratio: f64::NAN,
             strain_range: [f64::NAN; 2],
+            stress_strain: None,
         })
     }
 
@@ -136,6 +161,22 @@ pub fn predict(blocks: &[&Block], material: &Material) -> Result<Vec<Vec<f64>>> 
                 .with_context(|| format!("experiment `{}`", b.name))
         })
         .collect()
+}
+
+/// `predict`, with each experiment's warnings at `material` (`ExperimentModel::predict_with_warnings`).
+pub fn predict_with_warnings(
+    blocks: &[&Block],
+    material: &Material,
+) -> Result<(Vec<Vec<f64>>, Vec<Vec<String>>)> {
+    let both: Vec<(Vec<f64>, Vec<String>)> = blocks
+        .par_iter()
+        .map(|b| {
+            b.model
+                .predict_with_warnings(material)
+                .with_context(|| format!("experiment `{}`", b.name))
+        })
+        .collect::<Result<_>>()?;
+    Ok(both.into_iter().unzip())
 }
 
 /// How the Jacobian of the residuals is formed.

@@ -4,6 +4,7 @@
 use super::{Discretized, Drive, ShpbModel, INCIDENT, SPECIMEN, TRANSMITTER};
 use crate::shpb::signal::interpolate;
 use materials::Material;
+use mpm_core::melting::{Melting, MeltingWatch};
 use mpm_core::parallel::LARGE_MODEL_FROM;
 use mpm_core::solver::observer::{observe_all, Observer, Verdict};
 use mpm_core::solver::RigidContact;
@@ -39,6 +40,8 @@ pub struct ShpbRun {
     pub dt_s: f64,
     pub particles: usize,
     pub wall_s: f64,
+    /// The specimen's points that reached the melting temperature, if any.
+    pub melting: Vec<Melting>,
 }
 
 /// `run` on one thread, inside its own pool: a model of a few thousand points runs the
@@ -124,8 +127,10 @@ impl ShpbModel {
         let mut solver = template.instantiate(&[(SPECIMEN, material)])?;
         solver.initialize();
         let mut h = FaceHistory::default();
+        let mut melting = MeltingWatch::default();
         let mut each = |s: &Solver<D>| -> Verdict {
             self.record(s, &mut h);
+            melting.check(s);
             observe(s)
         };
         let first = each(&solver)?;
@@ -142,6 +147,7 @@ impl ShpbModel {
             dt_s: solver.dt,
             particles: solver.particles.len(),
             wall_s: start.elapsed().as_secs_f64(),
+            melting: melting.melted(),
         })
     }
 

@@ -334,12 +334,90 @@ mod tests {
         let history = std::fs::read_to_string(dir.join("history.csv")).unwrap();
         assert_eq!(history.lines().count(), 1 + 1 + steps);
         assert!(
-            history.starts_with("t [s],kinetic [J],"),
+            history.starts_with("time_s,kinetic_j,"),
             "{}",
             &history[..40]
         );
-        let snapshot = std::fs::read(dir.join("snapshot_00010.vtk")).unwrap();
-        assert!(snapshot.starts_with(b"# vtk DataFile"));
+        let snapshot = std::fs::read(dir.join("snapshot_00010.vtp")).unwrap();
+        assert!(snapshot.starts_with(b"<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\""));
+    }
+
+    /// A snapshot's appended arrays are where its XML says (offsets and UInt64 byte
+    /// counts), hold the solver's values, and the collection lists every snapshot with its
+    /// time.
+    #[test]
+    fn snapshots_hold_the_state_and_the_collection_their_times() {
+        let dir = std::env::temp_dir().join(format!("mpw_vtp_test-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let scene = load(&scenes().join("colliding_disks.toml")).unwrap();
+        let Simulation::Planar(mut solver) = scene.simulation else {
+            unreachable!()
+        };
+        solver.initialize();
+        let mut writer = crate::output::SnapshotWriter::new(&dir, 1e-3, 4);
+        writer.write_next(&solver).unwrap();
+        for _ in 0..3 {
+            solver.step().unwrap();
+        }
+        writer.write_next(&solver).unwrap();
+        let bytes = std::fs::read(dir.join("snapshot_00001.vtp")).unwrap();
+        let raw = b"<AppendedData encoding=\"raw\">\n   _";
+        let start = bytes.windows(raw.len()).position(|w| w == raw).unwrap() + raw.len();
+        let xml = String::from_utf8_lossy(&bytes[..start]);
+        // every declared array, in order: its name and offset
+        let arrays: Vec<(String, usize)> = xml
+            .lines()
+            .filter(|l| l.contains("format=\"appended\""))
+            .map(|l| {
+                let attr = |key: &str| {
+                    let from = l.find(&format!("{key}=\"")).unwrap() + key.len() + 2;
+                    l[from..from + l[from..].find('"').unwrap()].to_string()
+                };
+                (attr("Name"), attr("offset").parse().unwrap())
+            })
+            .collect();
+        let read = |offset: usize| {
+            let at = start + offset;
+            let len = u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap()) as usize;
+            &bytes[at + 8..at + 8 + len]
+        };
+        let f32s = |b: &[u8]| -> Vec<f64> {
+            b.chunks(4)
+                .map(|c| f32::from_le_bytes(c.try_into().unwrap()) as f64)
+                .collect()
+        };
+        let n = solver.particles.len();
+        let find = |name: &str| arrays.iter().find(|(a, _)| a == name).unwrap().1;
+        let position = f32s(read(find("position")));
+        assert_eq!(position.len(), 3 * n);
+        for (k, x) in solver.particles.position.iter().enumerate() {
+            assert_eq!(position[3 * k] as f32, x[0] as f32);
+            assert_eq!(position[3 * k + 1] as f32, x[1] as f32);
+            assert_eq!(position[3 * k + 2], 0.0);
+        }
+        let velocity = f32s(read(find("velocity")));
+        assert_eq!(
+            velocity[3 * (n - 1) + 1] as f32,
+            solver.particles.velocity[n - 1][1] as f32
+        );
+        // the last array ends where the appended section closes
+        let (_, last) = arrays.last().unwrap();
+        let end = start + last + 8 + read(*last).len();
+        assert!(bytes[end..].starts_with(b"\n  </AppendedData>\n</VTKFile>"));
+        let offsets = read(find("offsets"));
+        assert_eq!(
+            i64::from_le_bytes(offsets[offsets.len() - 8..].try_into().unwrap()),
+            n as i64
+        );
+        let collection = std::fs::read_to_string(dir.join(crate::output::COLLECTION)).unwrap();
+        let times: Vec<f64> = collection
+            .lines()
+            .filter_map(|l| l.split("timestep=\"").nth(1))
+            .map(|t| t[..t.find('"').unwrap()].parse().unwrap())
+            .collect();
+        assert_eq!(times, [0.0, solver.time]);
+        assert!(collection.contains("file=\"snapshot_00001.vtp\""));
     }
 
     /// A run its caller stops (Ctrl-C in `mpw simulate`) ends at that step with cause

@@ -1,4 +1,5 @@
-//! Charts of a fit (PNG): each experiment against the fitted model, residuals,
+//! Charts of a fit (PNG): each experiment against the fitted model (an SHPB record also as
+//! true stress against true strain, measured and model, per face), residuals,
 //! convergence history (log10 S against model evaluations), the correlation matrix of
 //! every stage, and the optimizer comparison (log10 S against evaluations and wall time).
 //! Line charts use `crate::charts`; the correlation matrix is a plotters heat map.
@@ -15,6 +16,43 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::fmt::Write as _;
 use std::path::Path;
+
+/// An SHPB record as engineers read it: true stress against true strain from each face
+/// force, measured and model, both at the measured strain of the sample.
+fn stress_strain_chart(b: &Block, p: &[f64]) -> Option<LineChart> {
+    let ss = b.stress_strain.as_ref()?;
+    let per = ss.strain.len();
+    let mut chart = LineChart::new(
+        format!("{}: true stress against true strain", b.name),
+        "true strain, compression positive [-]",
+        "true stress F exp(−ε)/A0 [MPa]",
+    );
+    for (c, ch) in b.channels.iter().enumerate() {
+        let stress = |force: &[f64]| -> Vec<f64> {
+            force[c * per..(c + 1) * per]
+                .iter()
+                .zip(&ss.stress_per_force)
+                .map(|(f, k)| f * k)
+                .collect()
+        };
+        chart = chart
+            .with(Series::scaled(
+                format!("{ch} measured"),
+                &ss.strain,
+                &stress(&b.measured),
+                1.0,
+                1e-6,
+            ))
+            .with(Series::scaled(
+                format!("{ch} model"),
+                &ss.strain,
+                &stress(p),
+                1.0,
+                1e-6,
+            ));
+    }
+    Some(chart)
+}
 
 /// All charts of one fit into `dir`.
 pub fn fit_charts(dir: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
@@ -63,6 +101,9 @@ pub fn fit_charts(dir: &Path, set: &FitSet, result: &FitResult) -> Result<()> {
         let stem = sanitize(&b.name);
         fit.write_png(&dir.join(format!("{stem}_fit.png")))?;
         res.write_png(&dir.join(format!("{stem}_residual.png")))?;
+        if let Some(chart) = stress_strain_chart(b, p) {
+            chart.write_png(&dir.join(format!("{stem}_stress_strain.png")))?;
+        }
     }
     scatter_charts(dir, set, &result.predictions, None)?;
     if result.stages.is_empty() {

@@ -1,9 +1,11 @@
 //! Line charts of several labelled (x, y) series as PNG, with axis labels that carry the
 //! units. Axis ranges cover all finite points with a 5 % margin; non-finite points are
-//! left out of the drawing (the data files keep them).
+//! left out of the drawing (the data files keep them); the legend covers no data
+//! (`legend`).
 
 pub mod fit;
 pub mod heatmap;
+pub mod legend;
 
 use anyhow::{bail, Result};
 use plotters::prelude::*;
@@ -35,6 +37,15 @@ impl Series {
                 .collect(),
         }
     }
+}
+
+/// The finite points of a series.
+fn finite_points(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    points
+        .iter()
+        .copied()
+        .filter(|(x, y)| x.is_finite() && y.is_finite())
+        .collect()
 }
 
 /// A chart: title, axis labels (with units), series.
@@ -112,6 +123,22 @@ impl LineChart {
             (lo - m, hi + m)
         };
         let ((x0, x1), (y0, y1)) = (pad(x0, x1), pad(y0, y1));
+        let curves: Vec<Vec<(f64, f64)>> = self
+            .series
+            .iter()
+            .map(|s| finite_points(&s.points))
+            .collect();
+        let labels: Vec<&str> = self.series.iter().map(|s| s.label.as_str()).collect();
+        let plot = (
+            f64::from(SIZE.0) - 80.0 - 30.0,
+            f64::from(SIZE.1) - 50.0 - 60.0,
+        );
+        let (corner, (y0, y1)) = legend::place(
+            &curves,
+            (x0, x1),
+            (y0, y1),
+            legend::LegendBox::of(&labels, plot),
+        );
 
         let root = BitMapBackend::new(path, SIZE).into_drawing_area();
         root.fill(&WHITE)?;
@@ -134,15 +161,10 @@ impl LineChart {
             .y_desc(self.y_label.as_str())
             .label_style(("sans-serif", 16))
             .draw()?;
-        for (k, s) in self.series.iter().enumerate() {
+        for (k, (s, points)) in self.series.iter().zip(curves).enumerate() {
             let color = Palette99::pick(k).to_rgba();
-            let points = s
-                .points
-                .iter()
-                .cloned()
-                .filter(|(x, y)| x.is_finite() && y.is_finite());
             if self.markers {
-                let circles = points.clone().map(|p| Circle::new(p, 4, color.filled()));
+                let circles = points.iter().map(|&p| Circle::new(p, 4, color.filled()));
                 chart.draw_series(circles)?;
             }
             chart
@@ -154,6 +176,7 @@ impl LineChart {
         }
         chart
             .configure_series_labels()
+            .position(corner)
             .background_style(WHITE.mix(0.8))
             .border_style(BLACK)
             .label_font(("sans-serif", 16))

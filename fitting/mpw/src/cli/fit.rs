@@ -183,6 +183,15 @@ fn fit_with_progress(set: &FitSet, optimizer: Optimizer, stop: &AtomicBool) -> R
     result
 }
 
+/// What the models warned about at the final parameters, on standard error.
+pub fn warn_about_models(set: &FitSet, result: &FitResult) {
+    for (block, warnings) in set.blocks.iter().zip(&result.warnings) {
+        for w in warnings {
+            eprintln!("warning: {}: {w}", block.name);
+        }
+    }
+}
+
 /// After the fit's report is written, an interrupt during a study ends the process: the
 /// study has no partial form.
 fn quit_if_stopped(stop: &AtomicBool, study: &str, out: &Path) {
@@ -217,6 +226,7 @@ pub fn run(args: Args) -> Result<()> {
     print!("{}", table(&set, &result));
     write_files(&args.out, &set, &result)?;
     fit_charts::fit_charts(&args.out, &set, &result)?;
+    warn_about_models(&set, &result);
     if result.interrupted {
         anyhow::bail!(
             "{}: the fit was interrupted; the partial report (best values so far, marked interrupted) is in {}",

@@ -48,6 +48,7 @@ pub fn run(args: Args) -> Result<()> {
     print!("{}", table(&set, &result));
     write_files(&args.out, &set, &result)?;
     fit_charts::fit_charts(&args.out, &set, &result)?;
+    crate::cli::fit::warn_about_models(&set, &result);
     println!("report, CSVs and charts in {}", args.out.display());
     if args.validate {
         validate(&args.set, &set, &result)?;

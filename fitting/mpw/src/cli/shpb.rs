@@ -69,7 +69,7 @@ fn run_folder(folder: &Path, out: &Path) -> Result<()> {
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let strains: Vec<String> = TABLE_STRAINS
         .iter()
-        .map(|e| format!("true_stress_at_{e}_mpa"))
+        .map(|e| format!("true_stress_at_{e}_pa"))
         .collect();
     let mut csv = format!(
         "record,plateau_rate_per_s,final_strain,{},median_r,rate_trend_start_per_s,rate_trend_end_per_s,in_band_fraction,constant_rate,error\n",
@@ -94,9 +94,9 @@ fn run_folder(folder: &Path, out: &Path) -> Result<()> {
             Ok((_, a)) => {
                 let row = TableRow::of(&a);
                 let cells: String = row
-                    .stress_mpa
+                    .stress_pa
                     .iter()
-                    .map(|s| format!(" {:>12}", fixed(*s, 1)))
+                    .map(|s| format!(" {:>12}", fixed(s.map(|v| v * 1e-6), 1)))
                     .collect();
                 let q = &a.plateau;
                 println!(
@@ -113,9 +113,9 @@ fn run_folder(folder: &Path, out: &Path) -> Result<()> {
                     }
                 );
                 let stresses: Vec<String> = row
-                    .stress_mpa
+                    .stress_pa
                     .iter()
-                    .map(|s| s.map_or(String::new(), |v| format!("{v}")))
+                    .map(|s| s.map_or(String::new(), |v| format!("{v:e}")))
                     .collect();
                 csv += &format!(
                     "{stem},{},{},{},{},{},{},{},{},\n",
@@ -203,8 +203,8 @@ fn fixed(v: Option<f64>, decimals: usize) -> String {
 struct TableRow {
     rate: f64,
     final_strain: f64,
-    /// True 3-wave stress at `TABLE_STRAINS` on loading [MPa], `None` where not reached.
-    stress_mpa: Vec<Option<f64>>,
+    /// True 3-wave stress at `TABLE_STRAINS` on loading [Pa], `None` where not reached.
+    stress_pa: Vec<Option<f64>>,
     median_r: f64,
 }
 
@@ -215,19 +215,19 @@ impl TableRow {
             .max_by(|&i, &j| a.true_strain[i].total_cmp(&a.true_strain[j]))
             .unwrap_or(0);
         let loading = &a.true_strain[..=peak];
-        let stress_mpa = TABLE_STRAINS
+        let stress_pa = TABLE_STRAINS
             .iter()
             .map(|&e| {
                 let k = loading.iter().position(|&x| x >= e).filter(|&k| k > 0)?;
                 let w = (e - loading[k - 1]) / (loading[k] - loading[k - 1]);
                 let s = &a.true_stress_pa;
-                Some((s[k - 1] + w * (s[k] - s[k - 1])) / 1e6)
+                Some(s[k - 1] + w * (s[k] - s[k - 1]))
             })
             .collect();
         TableRow {
             rate: q.strain_rate_3wave_per_s,
             final_strain: a.strain.iter().cloned().fold(0.0, f64::max),
-            stress_mpa,
+            stress_pa,
             median_r: a.median_equilibrium_ratio(),
         }
     }

@@ -88,6 +88,9 @@ pub fn run(args: Args) -> Result<()> {
         println!("  {:<28} {:>14.6e} {}", r.name, r.value, r.unit);
     }
     energy_chart(&out.join("history.csv"), &out.join("energy.png"), &name)?;
+    for m in &summary.melting {
+        eprintln!("warning: {m}");
+    }
     if let Some(e) = summary.failure {
         match summary.time_step.risk() {
             Some(risk) => anyhow::bail!("{e}\n  likely cause: {risk}"),
@@ -101,14 +104,18 @@ pub fn run(args: Args) -> Result<()> {
 pub fn energy_chart(history: &Path, png: &Path, title: &str) -> Result<()> {
     let mut reader = csv::Reader::from_path(history)?;
     let header = reader.headers()?.clone();
+    // columns are `<quantity>_<unit>`; energies in j, or j_per_m in plane strain
+    let plane = header.iter().any(|h| h == "kinetic_j_per_m");
+    let unit = if plane { "J/m" } else { "J" };
+    let suffix = if plane { "_j_per_m" } else { "_j" };
     let col = |name: &str| {
         header
             .iter()
-            .position(|h| h.split(" [").next() == Some(name))
+            .position(|h| h == name || h.strip_suffix(suffix) == Some(name))
             .context(format!("history has no column {name}"))
     };
     let (t, k, w, x, b) = (
-        col("t")?,
+        col("time_s")?,
         col("kinetic")?,
         col("internal")?,
         col("external_work")?,
@@ -124,11 +131,6 @@ pub fn energy_chart(history: &Path, png: &Path, title: &str) -> Result<()> {
         label: label.into(),
         points: rows.iter().map(|r| (r[0], f(r))).collect(),
     };
-    // the unit the history states (J, or J/m in plane strain)
-    let unit = header[k]
-        .split(" [")
-        .nth(1)
-        .map_or("J", |u| u.trim_end_matches(']'));
     LineChart::new(
         format!("{title}: energies"),
         "t [s]",

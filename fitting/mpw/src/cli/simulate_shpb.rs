@@ -214,6 +214,9 @@ pub fn run(scene_file: &Path, params: Option<&Path>, out: &Path, sensitivity: bo
         "history.csv, snapshots, forces.png and pulses.png in {}",
         out.display()
     );
+    for m in &run.melting {
+        eprintln!("warning: {m}");
+    }
     if sensitivity {
         println!("contact parameters (F2 over the plateau, against the run above):");
         for v in contact_sensitivity(&scene, &material)? {

@@ -31,6 +31,12 @@ pub trait ExperimentModel: Send + Sync {
     /// Predicted values at the experiment's samples, in the units of its measurement.
     fn predict(&self, material: &Material) -> Result<Vec<f64>>;
 
+    /// `predict`, with what the model's run warns about at these parameters (an MPM level:
+    /// specimen points that reached the melting temperature). Default: no warnings.
+    fn predict_with_warnings(&self, material: &Material) -> Result<(Vec<f64>, Vec<String>)> {
+        Ok((self.predict(material)?, Vec::new()))
+    }
+
     /// Relative step of the forward differences (`finite_difference`): the driver's
     /// `FD_STEP` unless the model's own noise asks for a larger one.
     fn fd_step(&self) -> f64 {

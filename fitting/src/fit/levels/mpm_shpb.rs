@@ -128,17 +128,25 @@ impl ExperimentModel for MpmShpb {
     }
 
     fn predict(&self, material: &Material) -> Result<Vec<f64>> {
+        Ok(self.predict_with_warnings(material)?.0)
+    }
+
+    fn predict_with_warnings(&self, material: &Material) -> Result<(Vec<f64>, Vec<String>)> {
         let last = self.sample_times.iter().copied().fold(0.0, f64::max);
-        let h = self
+        let run = self
             .model
-            .run_until(preheated(material, self.theta_start), last + GAUGE_WINDOW)?
-            .history;
+            .run_until(preheated(material, self.theta_start), last + GAUGE_WINDOW)?;
+        let h = &run.history;
         let at = |force: &[f64]| window_means(&h.time_s, force, &self.sample_times, GAUGE_WINDOW);
-        Ok(match self.forces {
+        let prediction = match self.forces {
             FaceForces::F1 => at(&h.force_incident_n),
             FaceForces::F2 => at(&h.force_transmitted_n),
             FaceForces::Both => [at(&h.force_incident_n), at(&h.force_transmitted_n)].concat(),
-        })
+        };
+        Ok((
+            prediction,
+            run.melting.iter().map(|m| m.to_string()).collect(),
+        ))
     }
 
     fn fd_step(&self) -> f64 {

@@ -11,7 +11,7 @@
 //! do not run, and the result says `interrupted`.
 
 use crate::fit::levels::model::{with_values, Material};
-use crate::fit::objective::{predict, Block, JacobianKind, Objective};
+use crate::fit::objective::{predict_with_warnings, Block, JacobianKind, Objective};
 use crate::fit::optimize::lm::{levenberg_marquardt, LmOptions};
 use crate::fit::optimize::nelder_mead::{nelder_mead, NmOptions};
 use crate::fit::optimize::trace::{unwatched, HistoryPoint, OptimResult};
@@ -86,8 +86,10 @@ pub struct FitProgress<'a> {
 pub struct FitResult {
     pub stages: Vec<StageResult>,
     pub material: Material,
-    /// Final predictions of every experiment of the set.
+    /// Final predictions of every experiment of the set, and what each model's run warned
+    /// about at the final parameters (points that reached the melting temperature).
     pub predictions: Vec<Vec<f64>>,
+    pub warnings: Vec<Vec<String>>,
     pub wall_s: f64,
     /// The caller stopped the fit: the last stage is its best point so far, later stages
     /// did not run.
@@ -225,8 +227,10 @@ pub fn run_fit(
             break;
         }
     }
-    let predictions = predict(&set.blocks.iter().collect::<Vec<_>>(), &material)?;
+    let (predictions, warnings) =
+        predict_with_warnings(&set.blocks.iter().collect::<Vec<_>>(), &material)?;
     Ok(FitResult {
+        warnings,
         interrupted: stages.iter().any(StageResult::interrupted),
         stages,
         material,
@@ -282,8 +286,10 @@ pub fn refit(
 /// Evaluate every experiment of `set` with `material`: a result without stages.
 pub fn run_predict(set: &FitSet, material: Material) -> Result<FitResult> {
     let t0 = std::time::Instant::now();
-    let predictions = predict(&set.blocks.iter().collect::<Vec<_>>(), &material)?;
+    let (predictions, warnings) =
+        predict_with_warnings(&set.blocks.iter().collect::<Vec<_>>(), &material)?;
     Ok(FitResult {
+        warnings,
         stages: Vec::new(),
         material,
         predictions,

@@ -1,7 +1,7 @@
 //! Where a fit's parameters come from, read back from its `report.toml`: the material it
 //! was fitted with, the strain rates, temperatures and strains its experiments covered,
-//! the parameter pairs the data did not identify, the parameters stopped at a bound and whether
-//! the fit was interrupted.
+//! the parameter pairs the data did not identify, the parameters stopped at a bound, whether
+//! the fit was interrupted and what the models' runs warned about (molten points).
 //! A solver card carries these as comment lines (`caveats`): outside the covered ranges
 //! the parameters are an extrapolation.
 
@@ -33,6 +33,9 @@ struct StageRow {
 
 #[derive(Deserialize)]
 struct ExperimentRow {
+    name: String,
+    #[serde(default)]
+    warnings: Vec<String>,
     rate_per_s: f64,
     temperature_k: f64,
     strain_range: Option<[f64; 2]>,
@@ -57,6 +60,8 @@ pub struct FitOrigin {
     pub at_bounds: Vec<String>,
     /// The fit was stopped before it ended (a partial report).
     pub interrupted: bool,
+    /// What the models' runs warned about at the fitted parameters, as `experiment: warning`.
+    pub model_warnings: Vec<String>,
 }
 
 fn span(values: impl Iterator<Item = f64>) -> Option<[f64; 2]> {
@@ -109,6 +114,11 @@ impl FitOrigin {
                 .collect(),
             at_bounds: r.stages.iter().flat_map(|s| s.at_bounds.clone()).collect(),
             interrupted: r.interrupted,
+            model_warnings: r
+                .experiments
+                .iter()
+                .flat_map(|e| e.warnings.iter().map(|w| format!("{}: {w}", e.name)))
+                .collect(),
         })
     }
 
@@ -146,12 +156,16 @@ impl FitOrigin {
                 .iter()
                 .map(|b| format!("WARNING: the fit stopped with {b}, not at an optimum")),
         );
+        out.extend(self.model_warnings.iter().map(|w| format!("WARNING: {w}")));
         out
     }
 
     /// Whether the caveats hold more than the coverage.
     pub fn has_warnings(&self) -> bool {
-        self.interrupted || !self.not_identified.is_empty() || !self.at_bounds.is_empty()
+        self.interrupted
+            || !self.not_identified.is_empty()
+            || !self.at_bounds.is_empty()
+            || !self.model_warnings.is_empty()
     }
 }
 

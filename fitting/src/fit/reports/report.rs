@@ -83,6 +83,9 @@ struct ExperimentRow {
     strain_range: Option<[f64; 2]>,
     /// Tensile: where rate and temperature were read.
     metadata_source: Option<String>,
+    /// What the model's run warned about at the final parameters (an MPM level: specimen
+    /// points that reached the melting temperature).
+    warnings: Vec<String>,
 }
 
 /// A group's specimen scatter and the fit against it (`fit::statistics::scatter`).
@@ -139,7 +142,8 @@ fn experiment_rows(set: &FitSet, result: &FitResult) -> Vec<ExperimentRow> {
     set.blocks
         .iter()
         .zip(&result.predictions)
-        .map(|(b, p)| {
+        .zip(&result.warnings)
+        .map(|((b, p), warnings)| {
             let rms = b.rms(p);
             ExperimentRow {
                 name: b.name.clone(),
@@ -157,6 +161,7 @@ fn experiment_rows(set: &FitSet, result: &FitResult) -> Vec<ExperimentRow> {
                 equilibrium_ratio: Some(b.equilibrium_ratio).filter(|r| r.is_finite()),
                 strain_range: Some(b.strain_range).filter(|r| r.iter().all(|x| x.is_finite())),
                 metadata_source: Some(b.metadata_source.clone()).filter(|s| !s.is_empty()),
+                warnings: warnings.clone(),
             }
         })
         .collect()
@@ -451,6 +456,11 @@ pub fn table(set: &FitSet, result: &FitResult) -> String {
             "  {:<w$} {:>10.3e} {:>9.2} {:>8} {:>14} {:>8.3} {:>6}",
             e.name, e.rate_per_s, e.temperature_k, e.samples, rms, e.rms_percent_of_mean, ratio
         );
+    }
+    for e in &r.experiments {
+        for w in &e.warnings {
+            let _ = writeln!(out, "  WARNING: {}: {w}", e.name);
+        }
     }
     if r.experiments.iter().any(|e| e.equilibrium_ratio.is_some()) {
         let _ = writeln!(

@@ -8,7 +8,7 @@ use crate::fit::levels::shpb_input::face_signals;
 use crate::fit::levels::shpb_specimen::ShpbSpecimen;
 use crate::fit::levels::single_point::SinglePoint;
 use crate::fit::levels::tensile::{Tensile, Thermal};
-use crate::fit::objective::Block;
+use crate::fit::objective::{Block, StressStrain};
 use crate::fit::optimize::lm::LmOptions;
 use crate::fit::params::FreeParam;
 use crate::fit::sets::set_file::{resolve, ExperimentEntry, SetFile, Window};
@@ -434,6 +434,7 @@ fn shpb_block(
         .map(|&k| analysis.true_strain[k].abs())
         .collect();
     block.strain_range = range_of(&strain);
+    block.stress_strain = Some(StressStrain::new(strain, e.specimen.area_m2()));
     block.temperature_k = e.temperature_k;
     let strain_rate: Vec<f64> = samples
         .iter()
