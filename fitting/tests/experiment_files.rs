@@ -119,7 +119,7 @@ fn missing_and_unknown_toml_keys_are_located() {
     let toml = tensile_toml(TENSILE_COLUMNS, "colour = \"red\"\n");
     let e = load_tensile("unknown-key", &toml).unwrap_err();
     assert!(
-        matches!(&e, ExperimentError::Toml { at, message } if at.line == 11 && message.contains("colour")),
+        matches!(&e, ExperimentError::Toml { at, message, .. } if at.line == 11 && message.contains("colour")),
         "{e}"
     );
 }
@@ -792,7 +792,7 @@ fn a_bare_number_for_a_quantity_suggests_its_unit() {
     let toml = tensile_toml(TENSILE_COLUMNS, "").replace("diameter = \"10 mm\"", "diameter = 10");
     let e = load_tensile("bare", &toml).unwrap_err().to_string();
     assert!(
-        e.contains("t.toml:10:12: invalid type: integer `10`, expected a string")
+        e.contains("t.toml:10:12: `geometry.diameter`: invalid type: integer `10`, expected a string")
             && e.contains("e.g. `diameter = \"10 mm\"`"),
         "{e}"
     );

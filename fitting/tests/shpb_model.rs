@@ -62,15 +62,15 @@ fn a_scene_with_a_bad_field_names_it() {
         (
             "drive = \"incident-pulse\"",
             "drive = \"pulse\"",
-            "field `drive`",
+            "`drive`: ",
         ),
         (
             "level = \"mpm-axisymmetric\"",
             "level = \"mpm-2d\"",
-            "field `level`",
+            "`level`: ",
         ),
-        ("friction = 0.1", "friction = 1.5", "field `friction`"),
-        ("layers = 20", "layers = 1", "field `layers`"),
+        ("friction = 0.1", "friction = 1.5", "`friction`: "),
+        ("layers = 20", "layers = 1", "`layers`: "),
     ] {
         let file = dir.join("scene.toml");
         std::fs::write(&file, text.replace(from, to)).unwrap();
@@ -180,7 +180,7 @@ fn a_set_file_with_a_bad_drive_names_it() {
     for (to, expect) in [
         (
             "level = \"mpm-axisymmetric\"\ndrive = \"pulse\"",
-            "field `drive`: \"pulse\", expected \"measured-velocity\" or \"incident-pulse\"",
+            "`experiment.drive`: \"pulse\", expected \"measured-velocity\" or \"incident-pulse\"",
         ),
         (
             "level = \"single-point\"\ndrive = \"incident-pulse\"",

@@ -28,6 +28,7 @@ pub mod scalar;
 pub mod signal;
 pub mod sym_eigen;
 pub mod tensor;
+pub mod toml_place;
 
 pub use any_model::AnyModel;
 pub use error::MaterialError;

@@ -9,9 +9,9 @@
 //! [voce]         # (j2) tau0, tau_inf, h [Pa], eta [-]
 //! [thermal]      # (johnson-cook) theta0 [K], c_theta [J/(kg K)], alpha_sigma [1/K], gamma_tq [-]
 //! ```
-//! An unknown or missing key, a value out of range, or a wrong type is an error naming the
-//! file, the line of the key (or of its section when the key is missing), the field and the
-//! allowed range.
+//! An unknown or missing key, a value out of range, or a wrong type is an error in the
+//! common format of input files (`toml_place`): `file:line:column: `field`: problem`, at the
+//! key (or at its section when the key is missing), with the allowed range.
 
 use crate::any_model::AnyModel;
 use crate::elastic::Elastic;
@@ -19,6 +19,7 @@ use crate::flow_stress::{FlowStress, JohnsonCookLaw, Voce};
 use crate::neo_hooke::NeoHooke;
 use crate::parameters::{accepted, Range};
 use crate::plasticity::{ElastoPlastic, ReturnMap, Thermal};
+use crate::toml_place::{describe, Location};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 use toml::{Table, Value};
@@ -30,22 +31,23 @@ pub enum ParamFileError {
         file: PathBuf,
         reason: std::io::Error,
     },
-    #[error("{file}: TOML syntax: {message}")]
-    Syntax { file: PathBuf, message: String },
-    #[error("{}: field `{field}`: {problem}", located(file, *line))]
+    /// TOML syntax or a value toml cannot read, as `toml_place::describe` words it.
+    #[error("{0}")]
+    Syntax(String),
+    #[error("{}: `{field}`: {problem}", located(file, at))]
     Field {
         file: PathBuf,
-        /// 1-based line of the key, or of its section when the key is missing.
-        line: Option<usize>,
+        /// The key, or its section when the key is missing; `None` when neither is found.
+        at: Option<Location>,
         field: String,
         problem: String,
     },
 }
 
-/// `file:line`, or `file` alone when the line is unknown.
-fn located(file: &Path, line: Option<usize>) -> String {
-    match line {
-        Some(n) => format!("{}:{n}", file.display()),
+/// `file:line:column`, or `file` alone when the place is unknown.
+fn located(file: &Path, at: &Option<Location>) -> String {
+    match at {
+        Some(at) => at.to_string(),
         None => file.display().to_string(),
     }
 }
@@ -69,14 +71,17 @@ impl Reader<'_> {
         let field = field.into();
         ParamFileError::Field {
             file: self.file.to_path_buf(),
-            line: self.line_of(&field),
+            at: self
+                .offset_of(&field)
+                .map(|k| Location::in_text(self.file, self.text, k)),
             field,
             problem: problem.into(),
         }
     }
 
-    /// Line of a dotted field (`elastic.E`): of its key, else of the deepest table found.
-    fn line_of(&self, field: &str) -> Option<usize> {
+    /// Byte offset of a dotted field (`elastic.E`): of its key, else of the deepest table
+    /// found.
+    fn offset_of(&self, field: &str) -> Option<usize> {
         let mut table = self.spans.as_table();
         let mut span = None;
         for part in field.split('.') {
@@ -91,12 +96,7 @@ impl Reader<'_> {
                 None => break,
             }
         }
-        span.map(|s| {
-            self.text[..s.start.min(self.text.len())]
-                .matches('\n')
-                .count()
-                + 1
-        })
+        span.map(|s| s.start)
     }
 
     fn section<'t>(&self, root: &'t Table, name: &str) -> Result<&'t Table, ParamFileError> {
@@ -167,14 +167,11 @@ impl Reader<'_> {
 
 /// Parse a parameter file from its text; `file` names it in errors.
 pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFileError> {
-    let syntax = |message: String| ParamFileError::Syntax {
-        file: file.to_path_buf(),
-        message,
-    };
     let root: Table = text
         .parse()
-        .map_err(|e: toml::de::Error| syntax(e.to_string()))?;
-    let spans = toml_edit::ImDocument::parse(text).map_err(|e| syntax(e.to_string()))?;
+        .map_err(|e: toml::de::Error| ParamFileError::Syntax(describe(file, text, &e)))?;
+    let spans = toml_edit::ImDocument::parse(text)
+        .map_err(|e| ParamFileError::Syntax(format!("{}: {e}", file.display())))?;
     let r = Reader { file, text, spans };
     let model_kind = r.string(&root, "model")?.ok_or_else(|| {
         r.err(
@@ -332,7 +329,7 @@ pub fn load_elasto_plastic(path: impl AsRef<Path>) -> Result<ElastoPlastic, Para
         AnyModel::ElastoPlastic(m) => Ok(m),
         AnyModel::NeoHooke(_) => Err(ParamFileError::Field {
             file: path.to_path_buf(),
-            line: None,
+            at: None,
             field: "model".into(),
             problem: "expected \"j2\" or \"johnson-cook\" here, found a Neo-Hooke model".into(),
         }),

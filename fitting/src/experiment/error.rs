@@ -1,23 +1,10 @@
 //! Errors of reading an experiment: each names the file, the line, and the column (CSV
 //! column name, or TOML key and character column) and says what was expected.
 
-use std::fmt;
 use std::path::PathBuf;
 use thiserror::Error;
 
-/// A place in a text file: `file:line:column`, 1-based.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Location {
-    pub file: PathBuf,
-    pub line: usize,
-    pub column: usize,
-}
-
-impl fmt::Display for Location {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}:{}:{}", self.file.display(), self.line, self.column)
-    }
-}
+pub use materials::toml_place::Location;
 
 #[derive(Debug, Error)]
 pub enum ExperimentError {
@@ -26,9 +13,14 @@ pub enum ExperimentError {
         file: PathBuf,
         reason: std::io::Error,
     },
-    /// TOML syntax, a missing or unknown key, or a value of the wrong type.
-    #[error("{at}: {message}")]
-    Toml { at: Location, message: String },
+    /// TOML syntax, a missing or unknown key, or a value of the wrong type; `key` when the
+    /// error's line names one (`materials::toml_place::key_at`).
+    #[error("{at}: {}{message}", key.as_ref().map(|k| format!("`{k}`: ")).unwrap_or_default())]
+    Toml {
+        at: Location,
+        key: Option<String>,
+        message: String,
+    },
     #[error("{at}: `{key}`: kind \"{found}\", expected \"{expected}\"")]
     WrongKind {
         at: Location,

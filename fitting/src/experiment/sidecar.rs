@@ -39,14 +39,7 @@ impl Sidecar {
 
     /// 1-based line and column of byte offset `span.start`.
     pub fn at(&self, span: Range<usize>) -> Location {
-        let before = &self.text[..span.start.min(self.text.len())];
-        let line = before.matches('\n').count() + 1;
-        let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-        Location {
-            file: self.file.clone(),
-            line,
-            column,
-        }
+        Location::in_text(&self.file, &self.text, span.start)
     }
 
     /// The line that opens table `name` (`[name]`, `[name.x]` or `name = {`), for an error
@@ -75,6 +68,7 @@ impl Sidecar {
             let span = e.span().unwrap_or(0..0);
             ExperimentError::Toml {
                 message: self.type_hint(span.clone(), e.message().trim()),
+                key: materials::toml_place::key_at(&self.text, span.start),
                 at: self.at(span),
             }
         })

@@ -61,10 +61,12 @@ impl ShpbScene {
     pub fn load(path: &Path) -> Result<Self> {
         let text = std::fs::read_to_string(path)
             .with_context(|| format!("{}: cannot read", path.display()))?;
-        let f: SceneFile =
-            toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        let f: SceneFile = toml::from_str(&text)
+            .map_err(|e| anyhow::anyhow!("{}", materials::toml_place::describe(path, &text, &e)))?;
         let field = |name: &str, problem: String| {
-            anyhow::anyhow!("{}: field `{name}`: {problem}", path.display())
+            let offset = materials::toml_place::find_key(&text, None, name).start;
+            let at = materials::toml_place::Location::in_text(path, &text, offset);
+            anyhow::anyhow!("{at}: `{name}`: {problem}")
         };
         if f.kind != "shpb" {
             bail!(field("kind", format!("\"{}\", expected \"shpb\"", f.kind)));

@@ -522,8 +522,8 @@ fn contact_table(out: &mut String, s: &StageRow) {
 pub fn read_parameters(base: &Material, file: &Path) -> Result<Material> {
     let text = std::fs::read_to_string(file)
         .with_context(|| format!("{}: cannot read", file.display()))?;
-    let value: toml::Value =
-        toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))?;
+    let value: toml::Value = toml::from_str(&text)
+        .map_err(|e| anyhow::anyhow!("{}", materials::toml_place::describe(file, &text, &e)))?;
     let Some(list) = value.get("final_parameters") else {
         return match materials::load_material(file)?.model {
             AnyModel::ElastoPlastic(m) => Ok(m),
@@ -533,7 +533,11 @@ pub fn read_parameters(base: &Material, file: &Path) -> Result<Material> {
             ),
         };
     };
-    let field = || format!("{}: field `final_parameters`", file.display());
+    let field = || {
+        let offset = materials::toml_place::find_key(&text, None, "final_parameters").start;
+        let at = materials::toml_place::Location::in_text(file, &text, offset);
+        format!("{at}: `final_parameters`")
+    };
     let pairs = list
         .as_array()
         .with_context(|| format!("{}: expected an array of [name, value]", field()))?;

@@ -16,10 +16,35 @@ use crate::shpb::{analyze, ShpbAnalysis};
 use crate::shpb_model::{record, Drive, ModelLevel, ModelSettings};
 use anyhow::{anyhow, bail, Context, Result};
 use materials::material::Model;
+use materials::toml_place::{find_key, Location};
 use materials::AnyModel;
 use mpm_core::shape::ShapeFunction;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+
+/// A problem with one key of an `[[experiment]]` entry; `FitSet::load` places it at that
+/// key's line (`materials::toml_place`).
+#[derive(Debug)]
+struct FieldError {
+    key: &'static str,
+    problem: String,
+}
+
+impl std::fmt::Display for FieldError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "`{}`: {}", self.key, self.problem)
+    }
+}
+
+impl std::error::Error for FieldError {}
+
+fn field(key: &'static str, problem: impl Into<String>) -> anyhow::Error {
+    FieldError {
+        key,
+        problem: problem.into(),
+    }
+    .into()
+}
 
 /// Default thinning of an experiment's window.
 pub const DEFAULT_MAX_SAMPLES: usize = 300;
@@ -52,9 +77,17 @@ pub struct FitSet {
 
 impl FitSet {
     pub fn load(path: &Path) -> Result<FitSet> {
-        let set = SetFile::read(path)?;
+        let (set, text) = SetFile::read(path)?;
         let folder = path.parent().unwrap_or(Path::new("."));
-        let here = |field: &str| format!("{}: field `{field}`", path.display());
+        // `file:line:column: `key`` of a key at the top level or of the k-th entry of a table
+        let place = |table: Option<(&str, usize)>, key: &str| {
+            let at = Location::in_text(path, &text, find_key(&text, table, key).start);
+            match table {
+                Some((t, _)) => format!("{at}: `{t}.{key}`"),
+                None => format!("{at}: `{key}`"),
+            }
+        };
+        let here = |key: &str| place(None, key);
         let material_file = resolve(folder, &set.material);
         let loaded = materials::load_material(&material_file)?;
         let material_name = loaded.name.clone();
@@ -65,40 +98,54 @@ impl FitSet {
                 here("material")
             ),
         };
-        for name in set.fixed.keys().chain(set.truth.keys()) {
-            if base.param(name).is_none() {
-                bail!(
-                    "{}: unknown parameter `{name}`; known: {:?}",
-                    here("fixed/truth"),
-                    base.param_names()
-                );
+        for (table, names) in [("fixed", &set.fixed), ("truth", &set.truth)] {
+            for name in names.keys() {
+                if base.param(name).is_none() {
+                    bail!(
+                        "{}: unknown parameter; known: {:?}",
+                        place(Some((table, 0)), name),
+                        base.param_names()
+                    );
+                }
             }
         }
         let names: Vec<&str> = set.fixed.keys().map(String::as_str).collect();
         let values: Vec<f64> = set.fixed.values().copied().collect();
         let base = with_values(&base, &names, &values);
         let mut params = Vec::new();
-        for p in &set.parameters {
+        for (k, p) in set.parameters.iter().enumerate() {
             if base.param(&p.name).is_none() {
-                bail!("{}: unknown parameter `{}`", here("parameter.name"), p.name);
+                bail!(
+                    "{}: unknown parameter \"{}\"; known: {:?}",
+                    place(Some(("parameter", k)), "name"),
+                    p.name,
+                    base.param_names()
+                );
             }
             params.push(
                 FreeParam::new(&p.name, p.lower, p.upper, p.start)
-                    .with_context(|| here("parameter"))?,
+                    .with_context(|| place(Some(("parameter", k)), "name"))?,
             );
         }
         let mut blocks = Vec::new();
         for (k, entry) in set.experiments.iter().enumerate() {
             let file = resolve(folder, &entry.file);
-            for exp in load_experiments(&file)? {
-                let block = build_block(&base, &exp, entry).with_context(|| {
-                    format!(
-                        "{}: experiment {} ({}, record `{}`)",
-                        path.display(),
-                        k + 1,
-                        file.display(),
-                        exp.name()
-                    )
+            let experiments =
+                load_experiments(&file).with_context(|| place(Some(("experiment", k)), "file"))?;
+            for exp in experiments {
+                let block = build_block(&base, &exp, entry).map_err(|e| {
+                    let record = format!("(record `{}` of {})", exp.name(), file.display());
+                    match e.downcast_ref::<FieldError>() {
+                        Some(f) => anyhow!(
+                            "{}: {} {record}",
+                            place(Some(("experiment", k)), f.key),
+                            f.problem
+                        ),
+                        None => e.context(format!(
+                            "{} {record}",
+                            place(Some(("experiment", k)), "file")
+                        )),
+                    }
                 })?;
                 blocks.push(block);
             }
@@ -110,13 +157,16 @@ impl FitSet {
             }]
         } else {
             let mut stages = Vec::new();
-            for s in &set.stages {
+            for (si, s) in set.stages.iter().enumerate() {
                 let free = s
                     .free
                     .iter()
                     .map(|n| {
                         params.iter().position(|p| &p.name == n).ok_or_else(|| {
-                            anyhow::anyhow!("{}: `{n}` is not a [[parameter]]", here("stage.free"))
+                            anyhow::anyhow!(
+                                "{}: `{n}` is not a [[parameter]]",
+                                place(Some(("stage", si)), "free")
+                            )
                         })
                     })
                     .collect::<Result<Vec<_>>>()?;
@@ -130,7 +180,7 @@ impl FitSet {
                             .ok_or_else(|| {
                                 anyhow::anyhow!(
                                     "{}: no experiment named `{n}`; names: {:?}",
-                                    here("stage.experiments"),
+                                    place(Some(("stage", si)), "experiments"),
                                     blocks.iter().map(|b| b.name.clone()).collect::<Vec<_>>()
                                 )
                             })
@@ -152,10 +202,12 @@ impl FitSet {
             optimizer: set.optimizer,
             starts: set.starts,
             ftol: match set.ftol {
-                Some(f) if !(f > 0.0 && f < 0.1) => bail!(
-                    "{}: {f}, expected a fraction between 0 and 0.1",
-                    here("ftol")
-                ),
+                Some(f) if !(f > 0.0 && f < 0.1) => {
+                    bail!(
+                        "{}: {f}, expected a fraction between 0 and 0.1",
+                        here("ftol")
+                    )
+                }
                 f => f.unwrap_or(LmOptions::default().ftol),
             },
             seed: set.seed,
@@ -189,7 +241,7 @@ fn build_block(base: &Material, exp: &Experiment, entry: &ExperimentEntry) -> Re
         "single-point" => Level::SinglePoint,
         mpm => Level::Mpm(
             mpm.parse()
-                .map_err(|e: String| anyhow!("field `level`: {e}, or \"single-point\""))?,
+                .map_err(|e: String| field("level", format!("{e}, or \"single-point\"")))?,
         ),
     };
     let mpm_fields = [
@@ -199,13 +251,16 @@ fn build_block(base: &Material, exp: &Experiment, entry: &ExperimentEntry) -> Re
         entry.drive.is_some(),
     ];
     if level == Level::SinglePoint && mpm_fields.contains(&true) {
-        bail!("fields `layers`, `friction`, `shape_function` and `drive` belong to the MPM levels (level = \"mpm-axisymmetric\", ...)");
+        return Err(field("level", "`layers`, `friction`, `shape_function` and `drive` belong to the MPM levels (level = \"mpm-axisymmetric\", ...)"));
     }
     let max = entry.max_samples.unwrap_or(DEFAULT_MAX_SAMPLES);
     match (exp, level) {
         (Experiment::Tensile(e), Level::SinglePoint) => tensile_block(base, e, entry, max),
         (Experiment::Tensile(_), Level::Mpm(_)) => {
-            bail!("field `level`: the MPM level models the SHPB test only; a tensile test is \"single-point\"")
+            return Err(field(
+                "level",
+                "the MPM level models the SHPB test only; a tensile test is \"single-point\"",
+            ))
         }
         (Experiment::Shpb(e), level) => shpb_block(base, e, entry, max, level),
     }
@@ -218,7 +273,7 @@ fn tensile_block(
     max: usize,
 ) -> Result<Block> {
     if entry.window.is_some() || entry.forces.is_some() || entry.max_equilibrium_ratio.is_some() {
-        bail!("fields `window`, `forces` and `max_equilibrium_ratio` are for SHPB experiments; a tensile window goes in the experiment TOML");
+        return Err(field("file", "`window`, `forces` and `max_equilibrium_ratio` are for SHPB experiments; a tensile window goes in the experiment TOML"));
     }
     let thermal = match entry.thermal.as_deref() {
         Some("isothermal") => Thermal::Isothermal,
@@ -226,7 +281,10 @@ fn tensile_block(
         None if e.nominal_strain_rate_per_s > 1.0 => Thermal::Adiabatic,
         None => Thermal::Isothermal,
         Some(other) => {
-            bail!("field `thermal`: \"{other}\", expected \"isothermal\" or \"adiabatic\"")
+            return Err(field(
+                "thermal",
+                format!("\"{other}\", expected \"isothermal\" or \"adiabatic\""),
+            ))
         }
     };
     // The model follows the record from its first sample (its own strain-time history)
@@ -287,9 +345,7 @@ fn mpm_block_model(
     level: ModelLevel,
 ) -> Result<MpmShpb> {
     let drive = match &entry.drive {
-        Some(name) => name
-            .parse()
-            .map_err(|e: String| anyhow!("field `drive`: {e}"))?,
+        Some(name) => name.parse().map_err(|e: String| field("drive", e))?,
         None => Drive::MeasuredVelocity,
     };
     let mut settings = ModelSettings::new(entry.layers.unwrap_or(20), drive);
@@ -298,20 +354,26 @@ fn mpm_block_model(
     settings.shape_function = match &entry.shape_function {
         Some(name) => name
             .parse()
-            .map_err(|e: String| anyhow!("field `shape_function`: {e}"))?,
+            .map_err(|e: String| field("shape_function", e))?,
         None => ShapeFunction::Cpdi,
     };
     if !(2..=400).contains(&settings.layers) {
-        bail!(
-            "field `layers`: {}, expected 2 to 400 points along the specimen",
-            settings.layers
-        );
+        return Err(field(
+            "layers",
+            format!(
+                "{}, expected 2 to 400 points along the specimen",
+                settings.layers
+            ),
+        ));
     }
     if !(0.0..=1.0).contains(&settings.friction) {
-        bail!(
-            "field `friction`: {}, expected a Coulomb coefficient between 0 and 1",
-            settings.friction
-        );
+        return Err(field(
+            "friction",
+            format!(
+                "{}, expected a Coulomb coefficient between 0 and 1",
+                settings.friction
+            ),
+        ));
     }
     let times = samples.iter().map(|&k| analysis.time_s[k]).collect();
     let model = record::model(e, analysis, settings, base)?;
@@ -335,53 +397,56 @@ fn shpb_block(
     level: Level,
 ) -> Result<Block> {
     if entry.thermal.is_some() {
-        bail!("field `thermal`: an SHPB specimen is always adiabatic");
+        return Err(field("thermal", "an SHPB specimen is always adiabatic"));
     }
     let channel = match entry.forces.as_deref() {
         None | Some("both") => FaceForces::Both,
         Some("f1") => FaceForces::F1,
         Some("f2") => FaceForces::F2,
         Some(other) => {
-            bail!("field `forces`: \"{other}\", expected \"both\", \"f1\" or \"f2\"")
+            return Err(field(
+                "forces",
+                format!("\"{other}\", expected \"both\", \"f1\" or \"f2\""),
+            ))
         }
     };
     let analysis = analyze(e)?;
     let face = face_signals(&analysis);
     let range = match &entry.window {
-        None => bail!("field `window`: an SHPB experiment needs its specimen-face time window [t_min, t_max] in s, or \"plateau\""),
+        None => return Err(field("file", "an SHPB experiment needs its specimen-face time window `window = [t_min, t_max]` in s, or \"plateau\"")),
         Some(Window::Named(name)) if name == "plateau" => face.plateau.start.max(1)..face.plateau.end,
         Some(Window::Named(other)) => {
-            bail!("field `window`: \"{other}\", expected [t_min, t_max] or \"plateau\"")
+            return Err(field("window", format!("\"{other}\", expected [t_min, t_max] or \"plateau\"")))
         }
         Some(Window::Times([t0, t1])) => {
             let (t0, t1) = (*t0, *t1);
             if !(0.0 <= t0 && t0 < t1) {
-                bail!("field `window`: [{t0}, {t1}] must satisfy 0 <= t_min < t_max");
+                return Err(field("window", format!("[{t0}, {t1}] must satisfy 0 <= t_min < t_max")));
             }
             let end = *face.time_s.last().unwrap();
             if t1 > end {
-                bail!(
-                    "field `window`: t_max = {t1:e} s is past the analysed record, which ends at {end:e} s after the incident pulse start"
-                );
+                return Err(field("window", format!(
+                    "t_max = {t1:e} s is past the analysed record, which ends at {end:e} s after the incident pulse start"
+                )));
             }
             let inside: Vec<usize> = (1..face.time_s.len())
                 .filter(|&k| face.time_s[k] >= t0 && face.time_s[k] <= t1)
                 .collect();
             if inside.is_empty() {
-                bail!("field `window`: no samples in [{t0:e}, {t1:e}] s");
+                return Err(field("window", format!("no samples in [{t0:e}, {t1:e}] s")));
             }
             inside[0]..inside[inside.len() - 1] + 1
         }
     };
     if range.is_empty() {
-        bail!("field `window`: no samples in the window");
+        return Err(field("window", "no samples in the window"));
     }
     let ratio = mean_equilibrium_ratio(&face.f1_n, &face.f2_n, range.clone());
     if let Some(limit) = entry.max_equilibrium_ratio {
         if ratio.is_nan() || ratio > limit {
-            bail!(
-                "field `max_equilibrium_ratio`: the mean equilibrium ratio over the window is {ratio:.3}, above {limit}: the specimen is not in equilibrium"
-            );
+            return Err(field("max_equilibrium_ratio", format!(
+                "the mean equilibrium ratio over the window is {ratio:.3}, above {limit}: the specimen is not in equilibrium"
+            )));
         }
     }
     let samples: Vec<usize> = thin(range, max);

@@ -49,6 +49,7 @@
 //! Paths are relative to the set file's folder.
 
 use anyhow::{bail, Context, Result};
+use materials::toml_place;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -139,22 +140,26 @@ pub struct StageEntry {
 }
 
 impl SetFile {
-    pub fn read(path: &Path) -> Result<SetFile> {
+    /// The set file at `path` and its text.
+    pub fn read(path: &Path) -> Result<(SetFile, String)> {
         let text = std::fs::read_to_string(path)
             .with_context(|| format!("{}: cannot read", path.display()))?;
-        let set: SetFile =
-            toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        let set: SetFile = toml::from_str(&text)
+            .map_err(|e| anyhow::anyhow!("{}", toml_place::describe(path, &text, &e)))?;
+        let at = |key: &str| {
+            toml_place::Location::in_text(path, &text, toml_place::find_key(&text, None, key).start)
+        };
         if !["lm", "lm-fd", "nelder-mead"].contains(&set.optimizer.as_str()) {
             bail!(
-                "{}: field `optimizer`: \"{}\", expected \"lm\", \"lm-fd\" or \"nelder-mead\"",
-                path.display(),
+                "{}: `optimizer`: \"{}\", expected \"lm\", \"lm-fd\" or \"nelder-mead\"",
+                at("optimizer"),
                 set.optimizer
             );
         }
         if set.starts == 0 {
-            bail!("{}: field `starts`: must be at least 1", path.display());
+            bail!("{}: `starts`: must be at least 1", at("starts"));
         }
-        Ok(set)
+        Ok((set, text))
     }
 }
 

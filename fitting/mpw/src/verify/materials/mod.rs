@@ -39,7 +39,7 @@ fn cases(dir: &Path, full: bool) -> Result<Vec<Row>, ParamFileError> {
         AnyModel::ElastoPlastic(_) => {
             return Err(ParamFileError::Field {
                 file: dir.join("aisi_52100.toml"),
-                line: None,
+                at: None,
                 field: "model".into(),
                 problem: "expected \"neo-hooke\" for the hyperelastic rows".into(),
             })
