@@ -792,8 +792,9 @@ fn a_bare_number_for_a_quantity_suggests_its_unit() {
     let toml = tensile_toml(TENSILE_COLUMNS, "").replace("diameter = \"10 mm\"", "diameter = 10");
     let e = load_tensile("bare", &toml).unwrap_err().to_string();
     assert!(
-        e.contains("t.toml:10:12: `geometry.diameter`: invalid type: integer `10`, expected a string")
-            && e.contains("e.g. `diameter = \"10 mm\"`"),
+        e.contains(
+            "t.toml:10:12: `geometry.diameter`: invalid type: integer `10`, expected a string"
+        ) && e.contains("e.g. `diameter = \"10 mm\"`"),
         "{e}"
     );
 }

@@ -135,7 +135,9 @@ fn bad_fields_are_named_with_the_allowed_range() {
     for (text, field, what, line) in cases {
         let e = error_of(&text);
         assert!(
-            e.starts_with(&format!("bad.toml:{line}:")) && e.contains(&format!(": `{field}`: ")) && e.contains(what),
+            e.starts_with(&format!("bad.toml:{line}:"))
+                && e.contains(&format!(": `{field}`: "))
+                && e.contains(what),
             "got: {e}"
         );
     }
