@@ -1,5 +1,5 @@
 //! The layout the README shows is the repository's, and dependencies point one way
-//! (DESIGN 2): `materials` <- `mpm-core` <- `fitting` <- `mpw`; no library depends on a
+//! (DESIGN 2): `materials` <- `mpm-core` <- `fitting`, `cutting` <- `mpw`; no library depends on a
 //! command-line, chart or terminal crate; within each crate, the top-level modules import
 //! each other without circles.
 
@@ -71,9 +71,10 @@ fn the_readme_layout_lists_every_folder_and_package() {
 fn dependencies_point_from_the_program_to_the_libraries() {
     let program_only = ["clap", "plotters", "indicatif", "ctrlc"];
     let above = [
-        ("materials", vec!["mpm-core", "fitting", "mpw"]),
-        ("mpm-core", vec!["fitting", "mpw"]),
-        ("fitting", vec!["mpw"]),
+        ("materials", vec!["mpm-core", "fitting", "cutting", "mpw"]),
+        ("mpm-core", vec!["fitting", "cutting", "mpw"]),
+        ("fitting", vec!["cutting", "mpw"]),
+        ("cutting", vec!["fitting", "mpw"]),
     ];
     for (library, not_on) in above {
         let deps = dependencies(library);
@@ -82,7 +83,7 @@ fn dependencies_point_from_the_program_to_the_libraries() {
         }
     }
     let program = dependencies("fitting/mpw");
-    for library in ["materials", "mpm-core", "fitting", "clap"] {
+    for library in ["materials", "mpm-core", "fitting", "cutting", "clap"] {
         assert!(
             program.contains(library),
             "mpw does not depend on {library}"

@@ -33,6 +33,10 @@ enum Command {
     Synth(mpw::cli::synth::Args),
     /// Run an MPM scene (TOML): progress bar, CSV history, VTK snapshots, energy chart.
     Simulate(mpw::cli::simulate::Args),
+    /// Metal cutting (thesis chapter 12): the vertical cut at a set of table 12.2, the
+    /// punch force against relative feed and the feed reached.
+    #[command(subcommand)]
+    Cut(mpw::cli::cut::Cut),
     /// Measure MPM throughput (particle-steps/s with 1 and 2 threads) and bytes per particle.
     BenchMpm(mpw::cli::bench_mpm::Args),
     /// Every shape function on the truss and the Taylor bar: error against wall time.
@@ -101,6 +105,7 @@ fn dispatch(command: Command) -> anyhow::Result<()> {
         Command::Predict(a) => mpw::cli::predict::run(a),
         Command::Synth(a) => mpw::cli::synth::run(a),
         Command::Simulate(a) => mpw::cli::simulate::run(a),
+        Command::Cut(c) => mpw::cli::cut::run(c),
         Command::BenchMpm(a) => mpw::cli::bench_mpm::run(a),
         Command::Kernels(a) => mpw::cli::kernels::run(a),
         Command::Completions { shell } => {

@@ -138,6 +138,15 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
             Trial::Yields { onset, phi_trial } => (onset, phi_trial),
         };
         let (model, old_re, f_re) = (self.re(), old.re(), re(f));
+        if onset.is_molten() {
+            if D::NDERIV > 0 {
+                return Err(MaterialError::MoltenDerivatives {
+                    theta: old_re.theta,
+                });
+            }
+            let real = return_principal::molten(&model, &f_re, &old_re)?.into();
+            return self.after_return(f, dt, old, real);
+        }
         // (Fp⁻¹, α) in real arithmetic, and τ where the return gives it.
         let real = match self.return_map {
             ReturnMap::Reference => {
@@ -168,6 +177,9 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
         for (i, (f_i, old_i)) in f.iter().zip(old).enumerate() {
             match self.trial(f_i, old_i) {
                 Trial::Done(result) => deliver(i, result),
+                Trial::Yields { onset, .. } if onset.is_molten() => {
+                    deliver(i, self.update(f_i, dt, old_i))
+                }
                 Trial::Yields { onset, .. } => {
                     group.push(i, re(f_i), old_i.re(), onset);
                     if group.len == MAX_LANES {

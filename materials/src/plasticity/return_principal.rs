@@ -180,6 +180,31 @@ pub fn solve(
     }
 }
 
+/// The return of a point whose flow stress is (within `flow_stress::MOLTEN_THERMAL_FACTOR` of) zero for
+/// every Δα (θ_n at the melting temperature, `Onset::is_molten`): the flow removes the whole
+/// elastic deviator,
+/// ε_a = mean ε^tr (ln J^e kept, det Fp = 1), so Δα = √(2/3) ‖dev ε^tr‖ (from
+/// ε_a − ε_a^tr = −√(3/2) Δα n_a) and τ is a pressure (all b_a equal, s = 0). The Newton
+/// solve cannot reach this limit (n = s/‖s‖ is undefined at s = 0).
+pub fn molten(
+    m: &ElastoPlastic<f64>,
+    f: &M3<f64>,
+    old: &State<f64>,
+) -> Result<Returned, MaterialError> {
+    let fe_trial = f * old.fp_inv;
+    let eigen = sym_eigen::decompose(&(fe_trial * fe_trial.transpose()));
+    let eps_trial = eigen.values.map(|l2| 0.5 * ln_near_one(l2));
+    let dev = eps_trial.add_scalar(-eps_trial.mean());
+    let local = Local {
+        eigen: &eigen,
+        fe_trial: &fe_trial,
+        eps_trial,
+        ratio: dev.map(|d| exp_small(-d)),
+        dalpha: (2.0f64 / 3.0).sqrt() * dev.norm(),
+    };
+    assemble(m, f, old, &local)
+}
+
 /// `solve` for many points of one material and Δt, four at a time in lockstep; `deliver`
 /// takes each point's index in `points` and its return. Each return equals `solve`'s to
 /// the bit.
@@ -522,6 +547,111 @@ mod rate_kink {
             (q - tau).abs() < 1e-9 * tau,
             "q = {q:e} against τ_y = {tau:e}: {:e}",
             (q - tau).abs() / tau
+        );
+    }
+}
+
+#[cfg(test)]
+mod molten {
+    use crate::flow_stress::{FlowStress, JohnsonCookLaw};
+    use crate::material::{Model, State};
+    use crate::plasticity::{ElastoPlastic, ReturnMap, Thermal};
+    use crate::tensor::M3;
+
+    /// Al 7075-T6 (thesis table 12.1).
+    fn al7075() -> ElastoPlastic<f64> {
+        ElastoPlastic {
+            elastic: crate::elastic::Elastic {
+                e: 72e9,
+                nu: 0.33,
+                rho: 2800.0,
+            },
+            flow: FlowStress::JohnsonCook(JohnsonCookLaw {
+                a: 546e6,
+                b: 678e6,
+                n: 0.71,
+                c: 0.024,
+                m: 1.56,
+                alpha_dot0: 4e-2,
+                theta_m: 874.15,
+            }),
+            thermal: Thermal {
+                theta0: 293.15,
+                c_theta: 862.0,
+                alpha_sigma: 23.6e-6,
+                gamma_tq: 0.9,
+            },
+            return_map: ReturnMap::Principal,
+        }
+    }
+
+    fn deviator_norm(tau: &M3<f64>) -> f64 {
+        (tau - M3::identity() * (tau.trace() / 3.0)).norm()
+    }
+
+    /// θ with the JC thermal factor 1 − θ*^M equal to `factor`.
+    fn theta_at(factor: f64) -> f64 {
+        293.15 + (1.0 - factor).powf(1.0 / 1.56) * (874.15 - 293.15)
+    }
+
+    /// A point at θm sheared and compressed in one step: no shear stress is left,
+    /// det Fp = 1, the increment is √(2/3)‖dev ε^tr‖, no heat. At a thermal factor of 1e-9
+    /// (a flow stress of about 1 Pa; the Newton solve stopped there at a residual of 5e-7,
+    /// as in the cutting run S0) the molten return is taken; just above the threshold
+    /// (2e-6) the ordinary return gives the same increment to 1e-6.
+    #[test]
+    fn a_molten_point_carries_pressure_only_and_matches_the_limit_of_the_return() {
+        let m = al7075();
+        let f = M3::new(1.0, 0.05, 0.0, 0.0, 0.97, 0.0, 0.0, 0.0, 1.0);
+        let at = |theta: f64| {
+            let old = State {
+                theta,
+                ..State::virgin(theta)
+            };
+            Model::update(&m, &f, 1e-9, &old).unwrap()
+        };
+        let (sigma, new) = at(874.15);
+        assert!(
+            deviator_norm(&sigma) < 1e-6 * sigma.norm().max(1.0),
+            "{sigma}"
+        );
+        assert!((new.fp_inv.determinant() - 1.0).abs() < 1e-12);
+        assert_eq!(new.theta, 874.15, "no flow stress, no heating");
+        // log strains of the trial stretch (F Fᵀ, virgin): Δα = √(2/3) ‖dev ε‖
+        let eigen = crate::sym_eigen::decompose(&(f * f.transpose()));
+        let eps = eigen.values.map(|l2| 0.5 * l2.ln());
+        let expected = (2.0f64 / 3.0).sqrt() * eps.add_scalar(-eps.mean()).norm();
+        assert!(
+            (new.dalpha / expected - 1.0).abs() < 1e-12,
+            "{} vs {expected}",
+            new.dalpha
+        );
+        let (sigma_near, near) = at(theta_at(1e-9));
+        assert!(
+            deviator_norm(&sigma_near) < 1e-6 * sigma_near.norm(),
+            "{sigma_near}"
+        );
+        assert_eq!(near.dalpha, new.dalpha);
+        let (_, above) = at(theta_at(2e-6));
+        assert!(
+            (above.dalpha / new.dalpha - 1.0).abs() < 1e-6,
+            "{} vs {}",
+            above.dalpha,
+            new.dalpha
+        );
+    }
+
+    /// Derivatives through a molten return are refused with that reason, not a
+    /// non-converged Newton solve.
+    #[test]
+    fn derivatives_at_a_molten_point_are_refused_by_name() {
+        let m = al7075().lift::<num_dual::Dual64>();
+        let f = M3::new(1.0, 0.05, 0.0, 0.0, 0.97, 0.0, 0.0, 0.0, 1.0).map(num_dual::Dual64::from);
+        let old = State::virgin(num_dual::Dual64::from(900.0));
+        let e = Model::update(&m, &f, 1e-9, &old).unwrap_err();
+        assert!(
+            matches!(e, crate::error::MaterialError::MoltenDerivatives { .. }),
+            "{e}"
         );
     }
 }

@@ -147,7 +147,19 @@ pub(super) fn add_bodies<const D: usize>(
         if b.particles_per_cell == 0 {
             return Err(check.err(format!("{field}.particles_per_cell"), "must be at least 1"));
         }
-        let s = h / b.particles_per_cell as f64;
+        let s = match (&b.points, &shape) {
+            (None, _) => h / b.particles_per_cell as f64,
+            (Some(n), Geometry::Box { min, max }) if n.len() == D && n.iter().all(|&k| k > 0) => {
+                SVector::from_fn(|i, _| (max[i] - min[i]) / n[i] as f64)
+            }
+            (Some(_), Geometry::Box { .. }) => {
+                return Err(check.err(
+                    format!("{field}.points"),
+                    format!("expected {D} positive counts, one per axis"),
+                ))
+            }
+            (Some(_), _) => return Err(check.err(format!("{field}.points"), "is for box shapes")),
+        };
         let (lo, hi) = shape.bounds();
         let estimate: f64 = (0..D)
             .map(|i| ((hi[i] - lo[i]) / s[i]).ceil() + 1.0)

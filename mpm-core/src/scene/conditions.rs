@@ -23,25 +23,35 @@ pub(super) fn add_velocity_bcs<const D: usize>(
     for (k, bc) in spec.velocity_bcs.iter().enumerate() {
         let field = format!("velocity_bcs[{k}]");
         let n = &bc.nodes;
-        let nodes = match (&n.plane, &n.below, &n.above) {
-            (Some(a), None, None) => NodeSet::Plane {
+        let at = || {
+            n.at.ok_or_else(|| {
+                check.err(
+                    format!("{field}.nodes.at"),
+                    "missing: the coordinate of the plane [m]",
+                )
+            })
+        };
+        let nodes = match (&n.plane, &n.below, &n.above, &n.inside) {
+            (Some(a), None, None, None) => NodeSet::Plane {
                 axis: check.axis::<D>(&format!("{field}.nodes.plane"), a)?,
-                at: n.at,
+                at: at()?,
             },
-            (None, Some(a), None) => NodeSet::Below {
+            (None, Some(a), None, None) => NodeSet::Below {
                 axis: check.axis::<D>(&format!("{field}.nodes.below"), a)?,
-                at: n.at,
+                at: at()?,
             },
-            (None, None, Some(a)) => NodeSet::Above {
+            (None, None, Some(a), None) => NodeSet::Above {
                 axis: check.axis::<D>(&format!("{field}.nodes.above"), a)?,
-                at: n.at,
+                at: at()?,
             },
-            _ => {
-                return Err(check.err(
-                    format!("{field}.nodes"),
-                    "give exactly one of plane, below, above",
-                ))
+            (None, None, None, Some(b)) if n.at.is_none() => {
+                let (min, max) = check.boxed::<D>(&format!("{field}.nodes.inside"), b)?;
+                NodeSet::Inside { min, max }
             }
+            _ => return Err(check.err(
+                format!("{field}.nodes"),
+                "give exactly one of plane, below, above (each with at), or inside = {min, max}",
+            )),
         };
         let values = bc.value.clone().unwrap_or(vec![0.0; bc.fixed.len()]);
         if values.len() != bc.fixed.len() {
@@ -51,7 +61,7 @@ pub(super) fn add_velocity_bcs<const D: usize>(
         for (a, v) in bc.fixed.iter().zip(values) {
             velocity[check.axis::<D>(&format!("{field}.fixed"), a)?] = Some(v);
         }
-        if bc.one_sided && matches!(nodes, NodeSet::Plane { .. }) {
+        if bc.one_sided && matches!(nodes, NodeSet::Plane { .. } | NodeSet::Inside { .. }) {
             return Err(check.err(
                 format!("{field}.one_sided"),
                 "a one-sided wall needs `below` or `above` nodes (the side the body is not on)",

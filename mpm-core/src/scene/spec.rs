@@ -128,6 +128,9 @@ pub struct BodySpec {
     pub shape: ShapeSpec,
     #[serde(default = "two")]
     pub particles_per_cell: usize,
+    /// A box filled with exactly this many points along each axis (spacing = edge / count,
+    /// as the thesis counts n_x × n_y), instead of `particles_per_cell`.
+    pub points: Option<Vec<usize>>,
     pub velocity: Option<Vec<f64>>,
     /// This body's kernel (`shape::ShapeFunction::NAMES`); default the scene's.
     pub shape_function: Option<String>,
@@ -186,7 +189,10 @@ pub struct NodeSetSpec {
     pub plane: Option<String>,
     pub below: Option<String>,
     pub above: Option<String>,
-    pub at: f64,
+    /// The coordinate of `plane`, `below` or `above` [m].
+    pub at: Option<f64>,
+    /// The nodes inside an axis-aligned box (a support under part of a body).
+    pub inside: Option<BoxSpec>,
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]

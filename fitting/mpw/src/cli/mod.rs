@@ -3,6 +3,7 @@
 pub mod bench;
 pub mod bench_mpm;
 pub mod bench_small;
+pub mod cut;
 pub mod drive;
 pub mod export;
 pub mod fit;

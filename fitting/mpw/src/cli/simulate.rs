@@ -52,6 +52,45 @@ pub fn run(args: Args) -> Result<()> {
         anyhow::bail!("--params, --refine and --sensitivity are for SHPB scenes (kind = \"shpb\"); {} is an MPM scene with its materials inside", args.scene.display());
     }
     let scene = mpm_core::scene::load(&args.scene)?;
+    run_loaded(scene, &out, &name)
+}
+
+/// Run a loaded scene into `out` with a progress bar (Ctrl-C stops it with its output
+/// written): the run log, results, energy chart and warnings; a failure is returned as the
+/// error after everything is written, with the likely cause when the time step was risky.
+pub fn run_loaded(scene: mpm_core::scene::Scene, out: &Path, name: &str) -> Result<()> {
+    let summary = run_with_progress(scene, out)?;
+    println!("{} particles, {}", summary.particles, summary.time_step);
+    for change in &summary.time_step_changes {
+        println!("time step: {change}");
+    }
+    println!(
+        "{} steps; history, snapshots, results.csv and chart in {}",
+        summary.steps,
+        out.display()
+    );
+    for r in &summary.results {
+        println!("  {:<28} {:>14.6e} {}", r.name, r.value, r.unit);
+    }
+    energy_chart(&out.join("history.csv"), &out.join("energy.png"), name)?;
+    for m in &summary.melting {
+        eprintln!("warning: {m}");
+    }
+    if let Some(e) = summary.failure {
+        match summary.time_step.risk() {
+            Some(risk) => anyhow::bail!("{e}\n  likely cause: {risk}"),
+            None => anyhow::bail!("{e}"),
+        }
+    }
+    Ok(())
+}
+
+/// Run a loaded scene into `out` with a progress bar; Ctrl-C (or SIGTERM) stops it at the
+/// next step with its output written. The summary holds a failure, if any.
+pub fn run_with_progress(
+    scene: mpm_core::scene::Scene,
+    out: &Path,
+) -> Result<mpm_core::run::RunSummary> {
     for line in scene.describe() {
         println!("{line}");
     }
@@ -65,7 +104,7 @@ pub fn run(args: Args) -> Result<()> {
         }
     };
     let stop = crate::cli::interrupt::interrupt_flag()?;
-    let summary = mpm_core::run::run_scene(scene, &out, warn, |t, end| {
+    let summary = mpm_core::run::run_scene(scene, out, warn, |t, end| {
         bar.set_position((1000.0 * t / end) as u64);
         bar.set_message(format!("{t:.3e} s"));
         match stop.load(Ordering::Relaxed) {
@@ -75,29 +114,7 @@ pub fn run(args: Args) -> Result<()> {
     })
     .with_context(|| format!("writing output to {}", out.display()))?;
     bar.finish();
-    println!("{} particles, {}", summary.particles, summary.time_step);
-    for change in &summary.time_step_changes {
-        println!("time step: {change}");
-    }
-    println!(
-        "{} steps; history, snapshots, results.csv and chart in {}",
-        summary.steps,
-        out.display()
-    );
-    for r in &summary.results {
-        println!("  {:<28} {:>14.6e} {}", r.name, r.value, r.unit);
-    }
-    energy_chart(&out.join("history.csv"), &out.join("energy.png"), &name)?;
-    for m in &summary.melting {
-        eprintln!("warning: {m}");
-    }
-    if let Some(e) = summary.failure {
-        match summary.time_step.risk() {
-            Some(risk) => anyhow::bail!("{e}\n  likely cause: {risk}"),
-            None => anyhow::bail!("{e}"),
-        }
-    }
-    Ok(())
+    Ok(summary)
 }
 
 /// Chart kinetic, internal and total energy from a history file.

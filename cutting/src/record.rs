@@ -1,0 +1,81 @@
+//! What a cutting run leaves: the tool's contact force per unit thickness against time (read
+//! from the run's history, columns `time_s` and `<tool>_force_<axis>_n_per_m`), and how far
+//! the run got. The force on the tool is the reaction of the workpiece: a punch pressing
+//! down feels f_y > 0.
+
+use anyhow::{bail, Context, Result};
+use std::path::Path;
+
+/// The tool force history of one run.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ToolForce {
+    /// Times of the history rows [s].
+    pub time_s: Vec<f64>,
+    /// Force on the tool per metre of thickness, x and y [N/m].
+    pub force_x: Vec<f64>,
+    pub force_y: Vec<f64>,
+}
+
+impl ToolForce {
+    /// Read `tool`'s force from a plane-strain run's `history.csv`.
+    pub fn read(history: &Path, tool: &str) -> Result<ToolForce> {
+        let mut reader = csv::Reader::from_path(history)
+            .with_context(|| format!("{}: cannot read the run's history", history.display()))?;
+        let header = reader.headers()?.clone();
+        let col = |name: &str| {
+            header.iter().position(|h| h == name).with_context(|| {
+                format!(
+                    "{}: no column {name} (a plane-strain run with a rigid body `{tool}`?)",
+                    history.display()
+                )
+            })
+        };
+        let (t, fx, fy) = (
+            col("time_s")?,
+            col(&format!("{tool}_force_x_n_per_m"))?,
+            col(&format!("{tool}_force_y_n_per_m"))?,
+        );
+        let mut out = ToolForce::default();
+        for (k, row) in reader.records().enumerate() {
+            let row = row?;
+            let number = |c: usize| -> Result<f64> {
+                row[c].parse().with_context(|| {
+                    format!(
+                        "{}: row {}: column {c} is not a number",
+                        history.display(),
+                        k + 2
+                    )
+                })
+            };
+            out.time_s.push(number(t)?);
+            out.force_x.push(number(fx)?);
+            out.force_y.push(number(fy)?);
+        }
+        if out.time_s.is_empty() {
+            bail!("{}: the history has no rows", history.display());
+        }
+        Ok(out)
+    }
+
+    /// Write relative feed [-], time [s] and both force components [N/m] as CSV, the feed
+    /// from `feed_at(t)`.
+    pub fn write_csv(&self, path: &Path, feed_at: impl Fn(f64) -> f64) -> Result<()> {
+        let mut text =
+            String::from("relative_feed,time_s,tool_force_x_n_per_m,tool_force_y_n_per_m\n");
+        for k in 0..self.time_s.len() {
+            let t = self.time_s[k];
+            text += &format!(
+                "{:e},{t:e},{:e},{:e}\n",
+                feed_at(t),
+                self.force_x[k],
+                self.force_y[k]
+            );
+        }
+        std::fs::write(path, text).with_context(|| format!("{}: cannot write", path.display()))
+    }
+
+    /// The time of the last history row [s].
+    pub fn last_time(&self) -> f64 {
+        *self.time_s.last().unwrap_or(&0.0)
+    }
+}

@@ -1,0 +1,91 @@
+//! `mpw cut`: the shipped scenes of the vertical cut are what `mpw cut scenes` writes, and
+//! a short run of set G0 (grid shift, springs) brings the punch into contact: the force on
+//! it rises from zero, the force table and chart are written and the feed is reported.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn mpw(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_mpw"))
+        .current_dir(root())
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn the_shipped_cutting_scenes_are_the_generator_s() {
+    let dir = std::env::temp_dir().join(format!("mpw-cut-scenes-{}", std::process::id()));
+    let out = mpw(&["cut", "scenes", "--out", dir.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let shipped = root().join("data/scenes/cutting");
+    let mut count = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap();
+        let expected = std::fs::read_to_string(shipped.join(name))
+            .unwrap_or_else(|_| panic!("{name:?} is not shipped in data/scenes/cutting"));
+        assert_eq!(
+            std::fs::read_to_string(&path).unwrap(),
+            expected,
+            "{name:?}: run `mpw cut scenes`"
+        );
+        count += 1;
+    }
+    assert_eq!(count, 10, "one scene per set of table 12.2");
+    assert_eq!(std::fs::read_dir(&shipped).unwrap().count(), 10);
+}
+
+#[test]
+fn a_short_vertical_cut_loads_the_punch() {
+    let dir = std::env::temp_dir().join(format!("mpw-cut-g0-{}", std::process::id()));
+    let out = mpw(&[
+        "cut",
+        "vertical",
+        "--set",
+        "G0",
+        "--feed",
+        "0.04",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        text.contains("G0 (10800 points, dx = 0.0001 m, linear)"),
+        "{text}"
+    );
+    assert!(text.contains("ran through to 4 % relative feed"), "{text}");
+    let table = std::fs::read_to_string(dir.join("force.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = table
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    // feed = t / 20 µs; no force before the punch touches, compression after
+    for r in &rows {
+        assert!((r[0] - r[1] / 20e-6).abs() < 1e-12, "{r:?}");
+    }
+    assert_eq!(rows[0][3], 0.0);
+    let last = rows.last().unwrap();
+    assert!(last[0] > 0.039, "{last:?}");
+    // the punch presses down on a sheet whose shear resistance is about
+    // τ_y l_y = (546 MPa/√3)(3 mm) ≈ 0.95 MN/m: the mean force over the last half of the
+    // run is of that order (impact transients included), not zero and not 100 times more
+    let half = &rows[rows.len() / 2..];
+    let mean = half.iter().map(|r| r[3]).sum::<f64>() / half.len() as f64;
+    assert!(mean > 0.1e6 && mean < 20e6, "mean f_y {mean:.3e} N/m");
+    assert!(dir.join("force.png").is_file() && dir.join("scene.toml").is_file());
+}
