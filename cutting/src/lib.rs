@@ -4,13 +4,19 @@
 //! - `vertical`: the vertical cut of §12.2 (Al 7075-T6, a punch moving down past a die
 //!   edge), its discretization sets of table 12.2 (S: no grid shift, grid conditions; G:
 //!   grid shift dx/2, spring conditions eq. 12.1), and the scene each set runs;
+//! - `orthogonal`: the orthogonal cut of §12.3 (42CrMo4, a tool moving to −x lifting a
+//!   chip of depth f_y) and its sensitivity matrix;
 //! - `record`: what a cutting run leaves: the tool force per unit thickness against time
 //!   and relative feed, the feed reached and, for a run that stopped, why;
-//! - `shear_angle`: the shear angle φ_s measured from the plastic strain rate field.
+//! - `shear_angle`: the shear angle φ_s measured from the plastic strain rate field;
+//! - `merchant`: Merchant's cutting force from the measured shear angle with the JC flow
+//!   stress of the shear zone, an independent check of the force level.
 //!
 //! Every value the thesis gives only in a figure is chosen here once, with its reason, and
 //! kept the same across the sets compared.
 
+pub mod merchant;
+pub mod orthogonal;
 pub mod record;
 pub mod shear_angle;
 pub mod vertical;

@@ -84,6 +84,28 @@ pub fn shear_angle(
     })
 }
 
+/// φ_s from a snapshot of the run (`mpm_core::output::read_snapshot`, its `alpha_rate`):
+/// every point of it, for a tool tip at `tip` under the surface `y_surface`.
+pub fn from_snapshot(
+    snapshot: &mpm_core::output::Snapshot,
+    tip: (f64, f64),
+    y_surface: f64,
+    half_width: f64,
+) -> Option<ShearAngle> {
+    let rate = snapshot.scalar("alpha_rate")?;
+    let points: Vec<RatePoint> = snapshot
+        .position
+        .iter()
+        .zip(rate)
+        .map(|(p, &rate)| RatePoint {
+            x: p[0],
+            y: p[1],
+            rate,
+        })
+        .collect();
+    shear_angle(&points, tip, y_surface, half_width)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

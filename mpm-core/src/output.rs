@@ -9,7 +9,9 @@
 //! and the number of points in contact; per control point its position x_i [m]. Plane
 //! strain: per metre of thickness (`_j_per_m`, `_kg_per_s`, `_n_per_m`).
 //! Snapshot point data: velocity [m/s], Cauchy stress σ (3×3) [Pa], von Mises stress [Pa],
-//! α [-], θ [K], J = det F [-], body index.
+//! α [-], θ [K], the equivalent plastic strain rate of the last step Δα/Δt [1/s],
+//! J = det F [-], body index. `read_snapshot` reads a snapshot back (positions, time and
+//! the scalar arrays), for charts and measures of the fields.
 
 use crate::kinematics::Kinematics;
 use crate::solver::observer::{Observer, Verdict, CONTINUE};
@@ -256,6 +258,11 @@ pub fn write_snapshot<const D: usize>(
         DataArray::float("von_mises", 1, p.stress.iter().map(von_mises)),
         DataArray::float("alpha", 1, history(|s| s.alpha)),
         DataArray::float("theta", 1, history(|s| s.theta)),
+        DataArray::float(
+            "alpha_rate",
+            1,
+            history(|s| s.dalpha).into_iter().map(|d| d / solver.dt),
+        ),
         DataArray::float("J", 1, p.deformation.iter().map(|f| f.determinant())),
         DataArray::float("body", 1, solver.blocks.iter().enumerate().flat_map(body)),
     ];
@@ -306,6 +313,90 @@ pub fn write_snapshot<const D: usize>(
     writeln!(out, "\n  </AppendedData>\n</VTKFile>")?;
     out.flush()?;
     Ok(path)
+}
+
+/// A snapshot read back: its time, the point positions and every one-component array.
+#[derive(Debug, Clone, Default)]
+pub struct Snapshot {
+    /// [s]
+    pub time: f64,
+    /// Point positions (x, y, z) [m] (z = 0 in 2D).
+    pub position: Vec<[f64; 3]>,
+    /// Scalar point arrays by name (`alpha`, `theta`, `alpha_rate`, `von_mises`, ...).
+    pub scalars: Vec<(String, Vec<f64>)>,
+}
+
+impl Snapshot {
+    /// The scalar array `name`.
+    pub fn scalar(&self, name: &str) -> Option<&[f64]> {
+        self.scalars
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| v.as_slice())
+    }
+}
+
+/// Read a snapshot written by `write_snapshot`.
+pub fn read_snapshot(path: &Path) -> io::Result<Snapshot> {
+    let bytes = std::fs::read(path)?;
+    let bad = |what: &str| {
+        io::Error::new(
+            io::ErrorKind::InvalidData,
+            format!(
+                "{}: {what} (not a snapshot written by mpw?)",
+                path.display()
+            ),
+        )
+    };
+    let marker = b"<AppendedData encoding=\"raw\">\n   _";
+    let start = bytes
+        .windows(marker.len())
+        .position(|w| w == marker)
+        .ok_or_else(|| bad("no raw appended data"))?
+        + marker.len();
+    let xml = String::from_utf8_lossy(&bytes[..start]);
+    let attr = |line: &str, key: &str| -> Option<String> {
+        let from = line.find(&format!("{key}=\""))? + key.len() + 2;
+        Some(line[from..from + line[from..].find('"')?].to_string())
+    };
+    let block = |offset: usize| -> io::Result<&[u8]> {
+        let at = start + offset;
+        let head = bytes
+            .get(at..at + 8)
+            .ok_or_else(|| bad("an offset past the end"))?;
+        let len = u64::from_le_bytes(head.try_into().unwrap()) as usize;
+        bytes
+            .get(at + 8..at + 8 + len)
+            .ok_or_else(|| bad("an array past the end"))
+    };
+    let floats = |b: &[u8]| -> Vec<f64> {
+        b.chunks_exact(4)
+            .map(|c| f32::from_le_bytes(c.try_into().unwrap()) as f64)
+            .collect()
+    };
+    let mut out = Snapshot::default();
+    for line in xml.lines() {
+        if line.contains("Name=\"TimeValue\"") {
+            let value = line.split('>').nth(1).and_then(|v| v.split('<').next());
+            out.time = value
+                .and_then(|v| v.trim().parse().ok())
+                .ok_or_else(|| bad("no time"))?;
+        }
+        let (Some(name), Some(offset)) = (attr(line, "Name"), attr(line, "offset")) else {
+            continue;
+        };
+        let offset: usize = offset.parse().map_err(|_| bad("a bad offset"))?;
+        let components = attr(line, "NumberOfComponents").unwrap_or_default();
+        if name == "position" {
+            out.position = floats(block(offset)?)
+                .chunks_exact(3)
+                .map(|c| [c[0], c[1], c[2]])
+                .collect();
+        } else if components == "1" {
+            out.scalars.push((name, floats(block(offset)?)));
+        }
+    }
+    Ok(out)
 }
 
 /// von Mises equivalent stress √(3/2 dev σ : dev σ) [Pa].

@@ -1,6 +1,7 @@
 //! `mpw cut`: the shipped scenes of the vertical cut are what `mpw cut scenes` writes, and
 //! a short run of set G0 (grid shift, springs) brings the punch into contact: the force on
-//! it rises from zero, the force table and chart are written and the feed is reported.
+//! it rises from zero, the force table and chart are written and the feed is reported; a
+//! stability map of two cells writes its table and one chart per variant.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -64,7 +65,7 @@ fn a_short_vertical_cut_loads_the_punch() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert!(
-        text.contains("G0 (10800 points, dx = 0.0001 m, linear)"),
+        text.contains("G0 (dx = 0.0001 m, linear): 10800 points"),
         "{text}"
     );
     assert!(text.contains("ran through to 4 % relative feed"), "{text}");
@@ -88,4 +89,46 @@ fn a_short_vertical_cut_loads_the_punch() {
     let mean = half.iter().map(|r| r[3]).sum::<f64>() / half.len() as f64;
     assert!(mean > 0.1e6 && mean < 20e6, "mean f_y {mean:.3e} N/m");
     assert!(dir.join("force.png").is_file() && dir.join("scene.toml").is_file());
+}
+
+#[test]
+fn a_small_stability_map_writes_its_cells() {
+    let dir = std::env::temp_dir().join(format!("mpw-cut-map-{}", std::process::id()));
+    let out = mpw(&[
+        "cut",
+        "map",
+        "--spacings",
+        "1e-4",
+        "--points",
+        "60",
+        "--variants",
+        "linear,linear+shift",
+        "--feed",
+        "0.02",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let table = std::fs::read_to_string(dir.join("map.csv")).unwrap();
+    let rows: Vec<&str> = table.lines().skip(1).collect();
+    assert_eq!(rows.len(), 2, "{table}");
+    assert!(
+        rows[0].starts_with("linear,1e-4,60,2e-2,") && rows[0].ends_with("\"ran through\""),
+        "{table}"
+    );
+    assert!(rows[1].starts_with("linear+shift,1e-4,60,2e-2,"), "{table}");
+    assert!(dir.join("map_linear.png").is_file() && dir.join("map_linear_shift.png").is_file());
+    let bad = mpw(&[
+        "cut",
+        "map",
+        "--variants",
+        "linear+tilt",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("linear+tilt: expected a shape function"));
 }

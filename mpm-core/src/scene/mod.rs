@@ -410,6 +410,20 @@ mod tests {
             i64::from_le_bytes(offsets[offsets.len() - 8..].try_into().unwrap()),
             n as i64
         );
+        // read back: positions, time and the scalar arrays, as written (in f32)
+        let back = crate::output::read_snapshot(&dir.join("snapshot_00001.vtp")).unwrap();
+        assert_eq!(back.time, solver.time);
+        assert_eq!(back.position.len(), n);
+        assert_eq!(
+            back.position[7][1],
+            solver.particles.position[7][1] as f32 as f64
+        );
+        let theta = back.scalar("theta").unwrap();
+        assert_eq!(
+            theta[n - 1],
+            solver.blocks[1].state.last().unwrap().theta as f32 as f64
+        );
+        assert_eq!(back.scalar("alpha_rate").unwrap().len(), n);
         let collection = std::fs::read_to_string(dir.join(crate::output::COLLECTION)).unwrap();
         let times: Vec<f64> = collection
             .lines()

@@ -3,6 +3,7 @@
 //! left out of the drawing (the data files keep them); the legend covers no data
 //! (`legend`).
 
+pub mod cell_map;
 pub mod fit;
 pub mod heatmap;
 pub mod legend;

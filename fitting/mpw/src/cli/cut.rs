@@ -1,25 +1,61 @@
-//! `mpw cut vertical --set G0`: the vertical cut of thesis §12.2 at one discretization of
-//! table 12.2 (`cutting::vertical`). Writes the run's scene (`scene.toml`, runnable with
-//! `mpw simulate`), the history, snapshots and results as `simulate` does, the punch force
-//! per unit thickness against relative feed (`force.csv`, `force.png`), and prints the
-//! relative feed reached: "ran through" to the end feed, or where and why the run stopped.
-//! `mpw cut scenes` writes every set's scene into `data/scenes/cutting/` (the shipped ones).
+//! `mpw cut`: metal cutting (thesis chapter 12, library `cutting`).
+//!
+//! - `mpw cut vertical --set G0`: the vertical cut at a set of table 12.2: the punch force
+//!   per unit thickness against relative feed (`force.csv`, `force.png`) and the relative
+//!   feed reached: "ran through" to the end feed, or where and why the run stopped.
+//! - `mpw cut orthogonal`: the orthogonal cut: tool forces f_x, f_y raw and
+//!   Savitzky-Golay filtered (31 history samples, first order; `force.csv`, `force.png`),
+//!   the shear angle measured in each snapshot from 20 µs on, the steady cutting force
+//!   against Merchant's estimate from that angle, and a picture of the chip (`chip.png`).
+//! - `mpw cut map`: the stability map of the vertical cut: one run per grid spacing ×
+//!   points over the thickness, for each variant (shape function, grid shift), the feed
+//!   reached and the wall time in each cell (`map.csv`, `map_<variant>.png`).
+//! - `mpw cut scenes`: every set's scene into `data/scenes/cutting/` (the shipped ones).
+//!
+//! Each run's folder holds its scene (`scene.toml`, runnable with `mpw simulate`), history,
+//! snapshots and results as `simulate` writes them.
 
 use crate::charts::{LineChart, Series};
 use anyhow::{Context, Result};
+use cutting::merchant::Merchant;
+use cutting::orthogonal::{OrthogonalCut, OrthogonalOptions, Resolution};
 use cutting::record::ToolForce;
-use cutting::vertical::{discretization, CutOptions, VerticalCut, SETS};
+use cutting::vertical::{discretization, CutOptions, Discretization, VerticalCut, SETS};
+use fitting::experiment::processing::SavitzkyGolay;
+use mpm_core::run::RunSummary;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Subcommand, Debug)]
 pub enum Cut {
     /// Run the vertical cut (Al 7075-T6) at one set of table 12.2.
     Vertical(VerticalArgs),
+    /// Run the orthogonal cut (42CrMo4): forces, shear angle, Merchant's estimate, chip.
+    Orthogonal(OrthogonalArgs),
+    /// The vertical cut's stability map: feed reached over spacing × points per variant.
+    Map(MapArgs),
     /// Write the scene of every set of table 12.2 into a folder.
     Scenes {
         #[arg(long, default_value = "data/scenes/cutting")]
         out: PathBuf,
     },
+}
+
+/// What every cut takes.
+#[derive(clap::Args, Debug, Clone)]
+pub struct Common {
+    /// Shape functions: linear, ugimp, cpgimp, cpdi.
+    #[arg(long, default_value = "linear")]
+    pub shape_function: String,
+    /// A fixed time step [s]; default the solver's stability limit (CFL, and the
+    /// penalty and spring stiffness on the lightest point).
+    #[arg(long)]
+    pub dt: Option<f64>,
+    /// Seed of the grid shift.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Output folder.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
 }
 
 #[derive(clap::Args, Debug)]
@@ -31,26 +67,68 @@ pub struct VerticalArgs {
     /// Relative feed at which the run ends (1 = 100 %, the sheet's thickness).
     #[arg(long, default_value_t = 1.2)]
     pub feed: f64,
-    /// Shape functions: linear, ugimp, cpgimp, cpdi.
-    #[arg(long, default_value = "linear")]
-    pub shape_function: String,
-    /// A fixed time step [s] (the thesis: 5e-10); default the solver's stability limit.
-    #[arg(long)]
-    pub dt: Option<f64>,
-    /// Seed of the grid shift.
-    #[arg(long, default_value_t = 1)]
-    pub seed: u64,
     /// Material file.
     #[arg(long, default_value = "data/materials/al7075_t6.toml")]
     pub material: PathBuf,
-    /// Output folder (default out/cut_vertical_<set>).
-    #[arg(long)]
-    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub common: Common,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct OrthogonalArgs {
+    /// Grid spacing [m] (the thesis: 2e-4, 1e-4, 8e-5).
+    #[arg(long, default_value_t = 2e-4)]
+    pub spacing: f64,
+    /// Points over the workpiece's height (the thesis: 80, 100, 150).
+    #[arg(long, default_value_t = 80)]
+    pub points: usize,
+    /// Depth of cut [m] (the thesis: 0.1e-3, 0.3e-3, 0.4e-3).
+    #[arg(long, default_value_t = 0.3e-3)]
+    pub depth: f64,
+    /// Coulomb friction between tool and chip.
+    #[arg(long, default_value_t = 0.0)]
+    pub friction: f64,
+    /// Run time [s].
+    #[arg(long, default_value_t = 80e-6)]
+    pub end: f64,
+    /// Material file.
+    #[arg(long, default_value = "data/materials/42crmo4_qt660.toml")]
+    pub material: PathBuf,
+    #[command(flatten)]
+    pub common: Common,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct MapArgs {
+    /// Grid spacings [m].
+    #[arg(long, value_delimiter = ',', default_value = "1e-4,6.25e-5,5e-5")]
+    pub spacings: Vec<f64>,
+    /// Points over the sheet's thickness.
+    #[arg(long, value_delimiter = ',', default_value = "60,100,200")]
+    pub points: Vec<usize>,
+    /// Variants: a shape function, `+shift` for the grid shift with springs
+    /// (linear, linear+shift, cpdi, cpdi+shift, ...).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "linear,linear+shift,cpdi,cpdi+shift"
+    )]
+    pub variants: Vec<String>,
+    /// Relative feed at which each run ends.
+    #[arg(long, default_value_t = 1.2)]
+    pub feed: f64,
+    #[arg(long, default_value = "data/materials/al7075_t6.toml")]
+    pub material: PathBuf,
+    /// Output folder.
+    #[arg(long, default_value = "out/cut_map")]
+    pub out: PathBuf,
 }
 
 pub fn run(cut: Cut) -> Result<()> {
     match cut {
         Cut::Vertical(args) => vertical(args),
+        Cut::Orthogonal(args) => orthogonal(args),
+        Cut::Map(args) => map(args),
         Cut::Scenes { out } => scenes(&out),
     }
 }
@@ -60,17 +138,20 @@ fn scenes(out: &Path) -> Result<()> {
     let cut = VerticalCut::default();
     for set in &SETS {
         let path = out.join(format!("vertical_{}.toml", set.name));
-        std::fs::write(&path, scene_text(&cut, set, &CutOptions::default())?)
-            .with_context(|| format!("{}: cannot write", path.display()))?;
+        std::fs::write(
+            &path,
+            vertical_scene_text(&cut, set, &CutOptions::default())?,
+        )
+        .with_context(|| format!("{}: cannot write", path.display()))?;
         println!("{}", path.display());
     }
     Ok(())
 }
 
 /// The scene file of `set`: a comment naming it, then the TOML.
-pub fn scene_text(
+fn vertical_scene_text(
     cut: &VerticalCut,
-    set: &cutting::vertical::Discretization,
+    set: &Discretization,
     options: &CutOptions,
 ) -> Result<String> {
     let shift = match set.shift {
@@ -91,6 +172,56 @@ pub fn scene_text(
     ))
 }
 
+/// An existing material file as an absolute path, for a scene written elsewhere.
+fn absolute(material: &Path) -> Result<String> {
+    let path = material
+        .canonicalize()
+        .with_context(|| format!("{}: cannot find the material file", material.display()))?;
+    Ok(path.display().to_string())
+}
+
+/// A finished cutting run: its summary and wall time [s].
+struct CutRun {
+    summary: RunSummary,
+    wall_s: f64,
+}
+
+impl CutRun {
+    /// Write `scene_text` into `out/scene.toml` and run it there with a progress bar.
+    fn start(scene_text: &str, out: &Path) -> Result<CutRun> {
+        std::fs::create_dir_all(out)
+            .with_context(|| format!("{}: cannot create", out.display()))?;
+        let scene_file = out.join("scene.toml");
+        std::fs::write(&scene_file, scene_text)?;
+        let scene = mpm_core::scene::load(&scene_file)?;
+        let start = std::time::Instant::now();
+        let summary = super::simulate::run_with_progress(scene, out)?;
+        for m in &summary.melting {
+            eprintln!("warning: {m}");
+        }
+        Ok(CutRun {
+            summary,
+            wall_s: start.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// Particle-steps per second.
+    fn throughput(&self) -> f64 {
+        (self.summary.steps * self.summary.particles) as f64 / self.wall_s
+    }
+
+    fn report(&self, name: &str) {
+        println!(
+            "{name}: {} points, {} steps of {:.3e} s in {:.1} s, {:.2} M particle-steps/s",
+            self.summary.particles,
+            self.summary.steps,
+            self.summary.time_step.dt,
+            self.wall_s,
+            self.throughput() / 1e6
+        );
+    }
+}
+
 fn vertical(args: VerticalArgs) -> Result<()> {
     let set = discretization(&args.set).with_context(|| {
         let names: Vec<&str> = SETS.iter().map(|s| s.name).collect();
@@ -99,76 +230,357 @@ fn vertical(args: VerticalArgs) -> Result<()> {
     if !(args.feed > 0.0 && args.feed <= 3.0) {
         anyhow::bail!("--feed {}: expected a relative feed in (0, 3]", args.feed);
     }
-    let material = args
-        .material
-        .canonicalize()
-        .with_context(|| format!("{}: cannot find the material file", args.material.display()))?;
-    let out = args
-        .out
+    let out = (args.common.out.clone())
         .unwrap_or_else(|| Path::new("out").join(format!("cut_vertical_{}", set.name)));
-    std::fs::create_dir_all(&out).with_context(|| format!("{}: cannot create", out.display()))?;
     let cut = VerticalCut::default();
     let options = CutOptions {
         end_feed: args.feed,
-        shape_function: args.shape_function.clone(),
-        dt: args.dt,
-        seed: args.seed,
-        material_file: material.display().to_string(),
+        shape_function: args.common.shape_function.clone(),
+        dt: args.common.dt,
+        seed: args.common.seed,
+        material_file: absolute(&args.material)?,
         ..CutOptions::default()
     };
-    let scene_file = out.join("scene.toml");
-    std::fs::write(&scene_file, scene_text(&cut, &set, &options)?)?;
-    let scene = mpm_core::scene::load(&scene_file)?;
-    let start = std::time::Instant::now();
-    let summary = super::simulate::run_with_progress(scene, &out)?;
-    let wall = start.elapsed().as_secs_f64();
+    let run = CutRun::start(&vertical_scene_text(&cut, &set, &options)?, &out)?;
     let force = ToolForce::read(&out.join("history.csv"), "punch")?;
     force.write_csv(&out.join("force.csv"), |t| cut.feed_at(t))?;
-    force_chart(&force, &cut, set.name, &out.join("force.png"))?;
-    for m in &summary.melting {
-        eprintln!("warning: {m}");
-    }
-    println!(
-        "{} ({} points, dx = {} m, {}): {} steps of {:.3e} s in {:.1} s, {:.2} M particle-steps/s",
-        set.name,
-        summary.particles,
-        set.spacing,
-        args.shape_function,
-        summary.steps,
-        summary.time_step.dt,
-        wall,
-        (summary.steps * summary.particles) as f64 / wall / 1e6
-    );
-    let peak = force.force_y.iter().copied().fold(0.0, f64::max);
-    println!("peak punch force f_y = {:.4} MN/m", peak * 1e-6);
-    match &summary.failure {
-        None => println!(
-            "ran through to {:.0} % relative feed; force.csv, force.png, history and snapshots in {}",
-            100.0 * args.feed,
-            out.display()
-        ),
-        Some(e) => {
-            println!(
-                "stopped at {:.1} % relative feed: {e}",
-                100.0 * cut.feed_at(e.time)
-            );
-            println!("force.csv, force.png, history and snapshots up to there in {}", out.display());
-        }
-    }
-    Ok(())
-}
-
-fn force_chart(force: &ToolForce, cut: &VerticalCut, set: &str, png: &Path) -> Result<()> {
     let feed: Vec<f64> = force
         .time_s
         .iter()
         .map(|&t| 100.0 * cut.feed_at(t))
         .collect();
     LineChart::new(
-        format!("vertical cut {set}: punch force"),
+        format!("vertical cut {}: punch force", set.name),
         "relative feed [%]",
         "punch force f_y per unit thickness [MN/m]",
     )
     .with(Series::scaled("f_y", &feed, &force.force_y, 1.0, 1e-6))
-    .write_png(png)
+    .write_png(&out.join("force.png"))?;
+    run.report(&format!(
+        "{} (dx = {} m, {})",
+        set.name, set.spacing, args.common.shape_function
+    ));
+    match &run.summary.failure {
+        None => println!(
+            "ran through to {:.0} % relative feed; force.csv, force.png, history and snapshots in {}",
+            100.0 * args.feed,
+            out.display()
+        ),
+        Some(e) => println!(
+            "stopped at {:.1} % relative feed: {e}\nforce.csv, force.png, history and snapshots up to there in {}",
+            100.0 * cut.feed_at(e.time),
+            out.display()
+        ),
+    }
+    Ok(())
+}
+
+/// Filter of the cutting forces (thesis §12.3): 31 samples, first order.
+const FORCE_FILTER: SavitzkyGolay = SavitzkyGolay {
+    window: 31,
+    order: 1,
+};
+
+/// Forces count as steady from this time on (the thesis: after 15-20 µs) [s].
+const STEADY_FROM: f64 = 20e-6;
+
+fn orthogonal(args: OrthogonalArgs) -> Result<()> {
+    let cut = OrthogonalCut {
+        feed: args.depth,
+        friction: args.friction,
+        end: args.end,
+        ..OrthogonalCut::default()
+    };
+    let resolution = Resolution {
+        spacing: args.spacing,
+        points_y: args.points,
+    };
+    let name = format!("dx{}_ny{}", args.spacing, args.points);
+    let out = (args.common.out.clone())
+        .unwrap_or_else(|| Path::new("out").join(format!("cut_orthogonal_{name}")));
+    let options = OrthogonalOptions {
+        shape_function: args.common.shape_function.clone(),
+        dt: args.common.dt,
+        seed: args.common.seed,
+        material_file: absolute(&args.material)?,
+        ..OrthogonalOptions::default()
+    };
+    let text = format!(
+        "# Orthogonal cut, thesis section 12.3: dx = {} m, {} x {} points, depth of cut {} m.\n\
+         # Written by `mpw cut orthogonal` (cutting::orthogonal explains every chosen value).\n{}",
+        args.spacing,
+        3 * args.points,
+        args.points,
+        args.depth,
+        toml::to_string(&cut.scene(&resolution, &options))?
+    );
+    let run = CutRun::start(&text, &out)?;
+    let force = ToolForce::read(&out.join("history.csv"), "tool")?;
+    let (fx, fy) = (
+        FORCE_FILTER.apply(&force.force_x),
+        FORCE_FILTER.apply(&force.force_y),
+    );
+    write_orthogonal_forces(&out.join("force.csv"), &force, &fx, &fy)?;
+    let us: Vec<f64> = force.time_s.iter().map(|t| t * 1e6).collect();
+    LineChart::new(
+        format!("orthogonal cut {name}: tool forces"),
+        "time [µs]",
+        "force per unit width [MN/m]",
+    )
+    .with(Series::scaled("f_x raw", &us, &force.force_x, 1.0, 1e-6))
+    .with(Series::scaled("f_y raw", &us, &force.force_y, 1.0, 1e-6))
+    .with(Series::scaled("f_x filtered", &us, &fx, 1.0, 1e-6))
+    .with(Series::scaled("f_y filtered", &us, &fy, 1.0, 1e-6))
+    .write_png(&out.join("force.png"))?;
+    run.report(&format!(
+        "orthogonal {name} ({})",
+        args.common.shape_function
+    ));
+    if let Some(e) = &run.summary.failure {
+        println!("stopped at t = {:.2} µs: {e}", e.time * 1e6);
+    }
+    let steady: Vec<f64> = (0..force.time_s.len())
+        .filter(|&k| force.time_s[k] >= STEADY_FROM)
+        .map(|k| fx[k])
+        .collect();
+    let angles = shear_angles(&out, &cut)?;
+    let material = materials::load_elasto_plastic(&args.material)?;
+    if let (Some(mean_fx), Some(phi)) = (mean(&steady), mean(&angles)) {
+        let estimate = Merchant {
+            depth: cut.feed,
+            speed: cut.speed,
+            rake_deg: cut.rake_deg,
+            shear_deg: phi,
+            friction: cut.friction,
+        }
+        .estimate(&material);
+        println!(
+            "steady f_x (filtered, t >= {:.0} µs): {:.3} MN/m; Merchant with φ_s = {phi:.1}°: {:.3} MN/m (shear zone ε = {:.2}, ε̇ = {:.2e} 1/s, θ = {:.0} K, τ_s = {:.0} MPa)",
+            STEADY_FROM * 1e6,
+            mean_fx * 1e-6,
+            estimate.force * 1e-6,
+            estimate.strain,
+            estimate.strain_rate,
+            estimate.temperature,
+            estimate.shear_stress * 1e-6
+        );
+    }
+    chip_chart(&out, &format!("orthogonal cut {name}"))?;
+    println!(
+        "force.csv, force.png, chip.png, history and snapshots in {}",
+        out.display()
+    );
+    Ok(())
+}
+
+fn mean(values: &[f64]) -> Option<f64> {
+    (!values.is_empty()).then(|| values.iter().sum::<f64>() / values.len() as f64)
+}
+
+fn write_orthogonal_forces(path: &Path, force: &ToolForce, fx: &[f64], fy: &[f64]) -> Result<()> {
+    let mut text = String::from(
+        "time_s,tool_force_x_n_per_m,tool_force_y_n_per_m,tool_force_x_filtered_n_per_m,tool_force_y_filtered_n_per_m\n",
+    );
+    for k in 0..force.time_s.len() {
+        text += &format!(
+            "{:e},{:e},{:e},{:e},{:e}\n",
+            force.time_s[k], force.force_x[k], force.force_y[k], fx[k], fy[k]
+        );
+    }
+    std::fs::write(path, text).with_context(|| format!("{}: cannot write", path.display()))
+}
+
+/// The snapshots of a run folder in order.
+fn snapshots(out: &Path) -> Result<Vec<PathBuf>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(out)?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "vtp"))
+        .collect();
+    files.sort();
+    Ok(files)
+}
+
+/// The shear angle of every snapshot from `STEADY_FROM` on [degrees], printed.
+fn shear_angles(out: &Path, cut: &OrthogonalCut) -> Result<Vec<f64>> {
+    let mut angles = Vec::new();
+    for file in snapshots(out)? {
+        let snapshot = mpm_core::output::read_snapshot(&file)?;
+        if snapshot.time < STEADY_FROM {
+            continue;
+        }
+        let [x, y] = cut.tip_at(snapshot.time);
+        match cutting::shear_angle::from_snapshot(&snapshot, (x, y), cut.height, 0.25 * cut.feed) {
+            Some(a) => {
+                println!(
+                    "  t = {:5.1} µs: shear angle {:.1}° (band contrast {:.1})",
+                    snapshot.time * 1e6,
+                    a.degrees,
+                    a.contrast
+                );
+                angles.push(a.degrees);
+            }
+            None => println!("  t = {:5.1} µs: no shear band found", snapshot.time * 1e6),
+        }
+    }
+    Ok(angles)
+}
+
+/// The last snapshot's points coloured by equivalent plastic strain (a picture of the chip).
+fn chip_chart(out: &Path, title: &str) -> Result<()> {
+    use plotters::prelude::*;
+    let Some(last) = snapshots(out)?.pop() else {
+        return Ok(());
+    };
+    let s = mpm_core::output::read_snapshot(&last)?;
+    let alpha = s.scalar("alpha").context("snapshot without alpha")?;
+    let (lo, hi) = s.position.iter().fold(
+        ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+        |(lo, hi), p| {
+            (
+                [lo[0].min(p[0]), lo[1].min(p[1])],
+                [hi[0].max(p[0]), hi[1].max(p[1])],
+            )
+        },
+    );
+    let path = out.join("chip.png");
+    let root = BitMapBackend::new(&path, (1000, 700)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            format!("{title}: α at t = {:.1} µs", s.time * 1e6),
+            ("sans-serif", 24),
+        )
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d(lo[0] * 1e3..hi[0] * 1e3, lo[1] * 1e3..hi[1] * 1e3)?;
+    chart
+        .configure_mesh()
+        .x_desc("x [mm]")
+        .y_desc("y [mm]")
+        .draw()?;
+    let top = alpha.iter().copied().fold(0.0, f64::max).max(1e-12);
+    chart.draw_series(s.position.iter().zip(alpha).map(|(p, &a)| {
+        let t = (a / top).clamp(0.0, 1.0);
+        let colour = RGBColor(
+            (255.0 * t) as u8,
+            (80.0 + 100.0 * (1.0 - t)) as u8,
+            (255.0 * (1.0 - t)) as u8,
+        );
+        Circle::new((p[0] * 1e3, p[1] * 1e3), 1, colour.filled())
+    }))?;
+    root.present()?;
+    Ok(())
+}
+
+/// One cell of the stability map.
+struct Cell {
+    variant: String,
+    spacing: f64,
+    points: usize,
+    feed: f64,
+    wall_s: f64,
+    stop: String,
+}
+
+fn map(args: MapArgs) -> Result<()> {
+    let material = absolute(&args.material)?;
+    let cut = VerticalCut::default();
+    let mut cells = Vec::new();
+    'map: for variant in &args.variants {
+        let (kernel, shift) = match variant.split_once('+') {
+            Some((k, "shift")) => (k, true),
+            None => (variant.as_str(), false),
+            Some(_) => {
+                anyhow::bail!("--variants {variant}: expected a shape function, optionally +shift")
+            }
+        };
+        for &spacing in &args.spacings {
+            for &points_y in &args.points {
+                let set = Discretization {
+                    name: "map",
+                    spacing,
+                    points_y,
+                    shift,
+                };
+                let options = CutOptions {
+                    end_feed: args.feed,
+                    shape_function: kernel.to_string(),
+                    material_file: material.clone(),
+                    snapshots: 2,
+                    ..CutOptions::default()
+                };
+                let folder = args.out.join(format!("{variant}_dx{spacing}_ny{points_y}"));
+                println!("{variant}, dx = {spacing} m, {points_y} points over the thickness:");
+                let run = CutRun::start(&vertical_scene_text(&cut, &set, &options)?, &folder)?;
+                run.report(&format!("  {variant}"));
+                let (feed, stop) = match &run.summary.failure {
+                    None => (args.feed, "ran through".to_string()),
+                    Some(e) if e.cause == mpm_core::Cause::Interrupted => {
+                        eprintln!("interrupted: the map holds the cells run before");
+                        break 'map;
+                    }
+                    Some(e) => (cut.feed_at(e.time), e.cause.to_string()),
+                };
+                cells.push(Cell {
+                    variant: variant.clone(),
+                    spacing,
+                    points: points_y,
+                    feed,
+                    wall_s: run.wall_s,
+                    stop,
+                });
+            }
+        }
+    }
+    let mut csv = String::from("variant,spacing_m,points_y,relative_feed_reached,wall_s,stop\n");
+    for c in &cells {
+        csv += &format!(
+            "{},{:e},{},{:e},{:e},\"{}\"\n",
+            c.variant,
+            c.spacing,
+            c.points,
+            c.feed,
+            c.wall_s,
+            c.stop.replace('"', "'")
+        );
+    }
+    std::fs::create_dir_all(&args.out)?;
+    std::fs::write(args.out.join("map.csv"), csv)?;
+    for variant in &args.variants {
+        let of: Vec<&Cell> = cells.iter().filter(|c| &c.variant == variant).collect();
+        crate::charts::cell_map::CellMap {
+            title: format!("vertical cut, {variant}: relative feed reached (wall time)"),
+            x_label: "grid spacing [mm]".into(),
+            y_label: "points over the thickness".into(),
+            columns: args
+                .spacings
+                .iter()
+                .map(|s| format!("{}", s * 1e3))
+                .collect(),
+            rows: args.points.iter().map(|n| n.to_string()).collect(),
+            cells: of
+                .iter()
+                .map(|c| {
+                    let column = args.spacings.iter().position(|&s| s == c.spacing).unwrap();
+                    let row = args.points.iter().position(|&n| n == c.points).unwrap();
+                    let text = match c.feed >= args.feed {
+                        true => format!("ran through\n{:.0} s", c.wall_s),
+                        false => format!("{:.0} %\n{:.0} s", 100.0 * c.feed, c.wall_s),
+                    };
+                    (column, row, c.feed / args.feed, text)
+                })
+                .collect(),
+        }
+        .write_png(
+            &args
+                .out
+                .join(format!("map_{}.png", variant.replace('+', "_"))),
+        )?;
+    }
+    println!(
+        "map.csv and one chart per variant in {}",
+        args.out.display()
+    );
+    Ok(())
 }
