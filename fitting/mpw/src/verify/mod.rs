@@ -4,6 +4,7 @@
 //! Each part of the catalogue is one function from the same `Inputs` to its rows,
 //! registered once in `CATALOGUE`; `table` runs them in that order.
 
+pub mod cutting;
 pub mod data;
 pub mod fit;
 pub mod materials;
@@ -27,12 +28,13 @@ pub struct Inputs<'a> {
 pub type Part = fn(&Inputs) -> anyhow::Result<Vec<Row>>;
 
 /// The catalogue, part by part, in table order.
-pub const CATALOGUE: [(&str, Part); 5] = [
+pub const CATALOGUE: [(&str, Part); 6] = [
     ("materials", materials::rows),
     ("shpb", shpb::rows),
     ("fit", fit::rows),
     ("mpm", mpm::rows),
     ("shpb-model", shpb_model::rows),
+    ("cutting", cutting::rows),
 ];
 
 /// Every row of the catalogue; a part that cannot run, or two rows of one name (two
