@@ -10,7 +10,9 @@
 //!   and relative feed, the feed reached and, for a run that stopped, why;
 //! - `shear_angle`: the shear angle φ_s measured from the plastic strain rate field;
 //! - `merchant`: Merchant's cutting force from the measured shear angle with the JC flow
-//!   stress of the shear zone, an independent check of the force level.
+//!   stress of the shear zone, an independent check of the force level;
+//! - `repeatability`: mean, sample standard deviation and CV(t) of a force over runs that
+//!   differ in the grid shift's seed.
 //!
 //! Every value the thesis gives only in a figure is chosen here once, with its reason, and
 //! kept the same across the sets compared.
@@ -18,5 +20,6 @@
 pub mod merchant;
 pub mod orthogonal;
 pub mod record;
+pub mod repeatability;
 pub mod shear_angle;
 pub mod vertical;

@@ -132,3 +132,40 @@ fn a_small_stability_map_writes_its_cells() {
     ]);
     assert!(String::from_utf8_lossy(&bad.stderr).contains("linear+tilt: expected a shape function"));
 }
+
+/// Two seeds to 2 % feed: the spread table has mean, std and CV per sample, CV = std/|mean|.
+#[test]
+fn repeated_runs_give_the_force_spread() {
+    let dir = std::env::temp_dir().join(format!("mpw-cut-repeat-{}", std::process::id()));
+    let out = mpw(&[
+        "cut",
+        "repeat",
+        "--seeds",
+        "1,2",
+        "--feed",
+        "0.02",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let table = std::fs::read_to_string(dir.join("repeat.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = table
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert!(rows.len() > 40, "{}", rows.len());
+    let loaded: Vec<&Vec<f64>> = rows.iter().filter(|r| r[2] != 0.0).collect();
+    assert!(!loaded.is_empty());
+    for r in loaded {
+        assert!(
+            (r[4] - r[3] / r[2].abs()).abs() <= 1e-12 * r[4].abs().max(1.0),
+            "{r:?}"
+        );
+    }
+    assert!(dir.join("repeat.png").is_file() && dir.join("cv.png").is_file());
+}

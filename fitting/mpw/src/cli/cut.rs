@@ -10,6 +10,9 @@
 //! - `mpw cut map`: the stability map of the vertical cut: one run per grid spacing ×
 //!   points over the thickness, for each variant (shape function, grid shift), the feed
 //!   reached and the wall time in each cell (`map.csv`, `map_<variant>.png`).
+//! - `mpw cut repeat --set G0 --seeds 1,2,3,4,5`: the vertical cut once per grid-shift
+//!   seed; the punch force's mean ± sample standard deviation and CV(t) per history sample
+//!   (`repeat.csv`, `repeat.png`).
 //! - `mpw cut scenes`: every set's scene into `data/scenes/cutting/` (the shipped ones).
 //!
 //! Each run's folder holds its scene (`scene.toml`, runnable with `mpw simulate`), history,
@@ -33,6 +36,8 @@ pub enum Cut {
     Orthogonal(OrthogonalArgs),
     /// The vertical cut's stability map: feed reached over spacing × points per variant.
     Map(MapArgs),
+    /// The vertical cut once per grid-shift seed: mean, spread and CV(t) of the punch force.
+    Repeat(RepeatArgs),
     /// Write the scene of every set of table 12.2 into a folder.
     Scenes {
         #[arg(long, default_value = "data/scenes/cutting")]
@@ -124,9 +129,25 @@ pub struct MapArgs {
     pub out: PathBuf,
 }
 
+#[derive(clap::Args, Debug)]
+pub struct RepeatArgs {
+    #[arg(long, default_value = "G0")]
+    pub set: String,
+    /// Grid-shift seeds, one run each (at least two).
+    #[arg(long, value_delimiter = ',', default_value = "1,2,3,4,5")]
+    pub seeds: Vec<u64>,
+    #[arg(long, default_value_t = 1.2)]
+    pub feed: f64,
+    #[arg(long, default_value = "data/materials/al7075_t6.toml")]
+    pub material: PathBuf,
+    #[arg(long, default_value = "out/cut_repeat")]
+    pub out: PathBuf,
+}
+
 pub fn run(cut: Cut) -> Result<()> {
     match cut {
         Cut::Vertical(args) => vertical(args),
+        Cut::Repeat(args) => repeat(args),
         Cut::Orthogonal(args) => orthogonal(args),
         Cut::Map(args) => map(args),
         Cut::Scenes { out } => scenes(&out),
@@ -580,6 +601,99 @@ fn map(args: MapArgs) -> Result<()> {
     }
     println!(
         "map.csv and one chart per variant in {}",
+        args.out.display()
+    );
+    Ok(())
+}
+
+fn repeat(args: RepeatArgs) -> Result<()> {
+    let set = discretization(&args.set)
+        .with_context(|| format!("--set {}: not a set of table 12.2", args.set))?;
+    if args.seeds.len() < 2 {
+        anyhow::bail!("--seeds: at least two seeds, to have a spread");
+    }
+    let cut = VerticalCut::default();
+    let material = absolute(&args.material)?;
+    let mut forces = Vec::new();
+    let mut time = Vec::new();
+    for &seed in &args.seeds {
+        let options = CutOptions {
+            end_feed: args.feed,
+            seed,
+            material_file: material.clone(),
+            snapshots: 2,
+            ..CutOptions::default()
+        };
+        let folder = args.out.join(format!("seed_{seed}"));
+        let run = CutRun::start(&vertical_scene_text(&cut, &set, &options)?, &folder)?;
+        run.report(&format!("{} seed {seed}", set.name));
+        if let Some(e) = &run.summary.failure {
+            println!(
+                "  stopped at {:.1} % relative feed: {e}",
+                100.0 * cut.feed_at(e.time)
+            );
+        }
+        let force = ToolForce::read(&folder.join("history.csv"), "punch")?;
+        if force.time_s.len() > time.len() {
+            time = force.time_s.clone();
+        }
+        forces.push(force.force_y);
+    }
+    let s = cutting::repeatability::spread(&forces).context("no spread")?;
+    let n = s.mean.len();
+    let feed: Vec<f64> = time[..n].iter().map(|&t| 100.0 * cut.feed_at(t)).collect();
+    let mut csv =
+        String::from("relative_feed,time_s,mean_force_y_n_per_m,std_force_y_n_per_m,cv\n");
+    for k in 0..n {
+        csv += &format!(
+            "{:e},{:e},{:e},{:e},{:e}\n",
+            feed[k] / 100.0,
+            time[k],
+            s.mean[k],
+            s.std[k],
+            s.cv[k]
+        );
+    }
+    std::fs::write(args.out.join("repeat.csv"), csv)?;
+    let band = |sign: f64| -> Vec<f64> { (0..n).map(|k| s.mean[k] + sign * s.std[k]).collect() };
+    LineChart::new(
+        format!(
+            "vertical cut {}: punch force over {} seeds",
+            set.name,
+            args.seeds.len()
+        ),
+        "relative feed [%]",
+        "punch force f_y [MN/m]",
+    )
+    .with(Series::scaled("mean", &feed, &s.mean, 1.0, 1e-6))
+    .with(Series::scaled("mean + std", &feed, &band(1.0), 1.0, 1e-6))
+    .with(Series::scaled("mean − std", &feed, &band(-1.0), 1.0, 1e-6))
+    .write_png(&args.out.join("repeat.png"))?;
+    LineChart::new(
+        format!(
+            "vertical cut {}: CV(t) = std/mean over {} seeds",
+            set.name,
+            args.seeds.len()
+        ),
+        "relative feed [%]",
+        "coefficient of variation [-]",
+    )
+    .with(Series::scaled("CV", &feed, &s.cv, 1.0, 1.0))
+    .write_png(&args.out.join("cv.png"))?;
+    let settled: Vec<f64> = (0..n)
+        .filter(|&k| feed[k] >= 40.0)
+        .map(|k| s.cv[k])
+        .filter(|c| c.is_finite())
+        .collect();
+    if let Some(m) = mean(&settled) {
+        let above = settled.iter().filter(|&&c| c > 0.3).count();
+        println!(
+            "CV of f_y from 40 % feed on: mean {m:.3}, above 0.3 in {above} of {} samples",
+            settled.len()
+        );
+    }
+    println!(
+        "repeat.csv, repeat.png, cv.png and one folder per seed in {}",
         args.out.display()
     );
     Ok(())

@@ -152,7 +152,11 @@ mod tests {
     #[test]
     fn the_default_cutting_rows_pass() {
         let data = VerifyData::repository();
-        let rows = rows(&Inputs { data: &data, full: false }).unwrap();
+        let rows = rows(&Inputs {
+            data: &data,
+            full: false,
+        })
+        .unwrap();
         assert_eq!(rows.len(), 3);
         for r in &rows {
             assert_ne!(r.verdict, crate::verify::row::Verdict::Fail, "{r}");
