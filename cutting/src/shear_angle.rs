@@ -1,4 +1,14 @@
-//! The shear angle φ_s of an orthogonal cut, measured from the plastic strain rate field:
+//! The shear angle φ_s of an orthogonal cut, measured two ways.
+//!
+//! From the chip's flow (`from_chip_flow`, Merchant's geometry): continuity through the
+//! shear plane gives the chip thickness ratio r = h/h_c = v_c/v, v_c the chip's speed up
+//! the rake face relative to the tool and v the cutting speed, and
+//! tan φ_s = r cos α / (1 − r sin α), α the rake angle. v_c is the mean, over the chip's
+//! points just above the uncut surface (heights between h/4 and h above it) within 3 h in
+//! front of the rake face, of their velocity relative to the tool along the rake face.
+//! This needs only the chip's motion, not a resolved shear zone.
+//!
+//! From the plastic strain rate field (`shear_angle`, `from_snapshot`):
 //! the primary shear zone is the band in which the workpiece ahead of the tool deforms
 //! fastest, and it runs from the tool tip up to the free surface at the chip root
 //! (Merchant's shear plane). For each trial angle φ the band of half-width `w` around the
@@ -106,6 +116,45 @@ pub fn from_snapshot(
     shear_angle(&points, tip, y_surface, half_width)
 }
 
+/// The cut's geometry for `from_chip_flow`: tool tip [m], uncut surface y [m], depth of
+/// cut h [m], rake angle [degrees], cutting speed v [m/s] (the tool moves to −x).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ChipGeometry {
+    pub tip: (f64, f64),
+    pub y_surface: f64,
+    pub depth: f64,
+    pub rake_deg: f64,
+    pub speed: f64,
+}
+
+/// φ_s [degrees] and the chip thickness ratio r from the chip points' velocities
+/// (`positions`, `velocities` [m/s]); `None` without chip points moving up the face.
+pub fn from_chip_flow(
+    positions: &[[f64; 3]],
+    velocities: &[[f64; 3]],
+    g: &ChipGeometry,
+) -> Option<(f64, f64)> {
+    let a = g.rake_deg.to_radians();
+    // up the rake face, which leans back (to +x) by α from the tip
+    let (tx, ty) = (a.sin(), a.cos());
+    let face_x = |y: f64| g.tip.0 + (y - g.tip.1) * a.tan();
+    let (mut sum, mut count) = (0.0, 0usize);
+    for (p, v) in positions.iter().zip(velocities) {
+        let above = p[1] - g.y_surface;
+        let ahead = face_x(p[1]) - p[0];
+        if (0.25 * g.depth..=g.depth).contains(&above) && (0.0..=3.0 * g.depth).contains(&ahead) {
+            // velocity relative to the tool, which moves at (−v, 0)
+            sum += (v[0] + g.speed) * tx + v[1] * ty;
+            count += 1;
+        }
+    }
+    if count == 0 || sum <= 0.0 {
+        return None;
+    }
+    let r = sum / count as f64 / g.speed;
+    Some(((r * a.cos()).atan2(1.0 - r * a.sin()).to_degrees(), r))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -152,6 +201,40 @@ mod tests {
             assert!((found.degrees - angle).abs() < 0.5, "{angle}: {found:?}");
             assert!(found.contrast > 2.0, "a clear band: {found:?}");
         }
+    }
+
+    /// A chip that slides up a 5° rake face at r v relative to the tool (tool at 40 m/s):
+    /// r and Merchant's angle come back exactly; points below the surface or behind the
+    /// face do not count.
+    #[test]
+    fn the_chip_flow_gives_merchant_s_angle() {
+        let g = ChipGeometry {
+            tip: (1e-3, 0.7e-3),
+            y_surface: 1e-3,
+            depth: 0.3e-3,
+            rake_deg: 5.0,
+            speed: 40.0,
+        };
+        let a = 5f64.to_radians();
+        let r = 0.5;
+        let chip = [-g.speed + r * g.speed * a.sin(), r * g.speed * a.cos(), 0.0];
+        let mut positions = Vec::new();
+        let mut velocities = Vec::new();
+        for i in 0..40 {
+            for j in 0..40 {
+                let (x, y) = (0.2e-3 + i as f64 * 25e-6, 0.5e-3 + j as f64 * 25e-6);
+                positions.push([x, y, 0.0]);
+                let in_chip = y > g.y_surface && x < g.tip.0 + (y - g.tip.1) * a.tan();
+                velocities.push(if in_chip { chip } else { [0.0, 0.0, 0.0] });
+            }
+        }
+        let (phi, ratio) = from_chip_flow(&positions, &velocities, &g).unwrap();
+        assert!((ratio - r).abs() < 1e-12, "{ratio}");
+        let expected = (r * a.cos() / (1.0 - r * a.sin())).atan().to_degrees();
+        assert!(
+            (phi - expected).abs() < 1e-9 && (phi - 27.5).abs() < 0.1,
+            "{phi} vs {expected}"
+        );
     }
 
     #[test]

@@ -10,8 +10,8 @@
 //! strain: per metre of thickness (`_j_per_m`, `_kg_per_s`, `_n_per_m`).
 //! Snapshot point data: velocity [m/s], Cauchy stress σ (3×3) [Pa], von Mises stress [Pa],
 //! α [-], θ [K], the equivalent plastic strain rate of the last step Δα/Δt [1/s],
-//! J = det F [-], body index. `read_snapshot` reads a snapshot back (positions, time and
-//! the scalar arrays), for charts and measures of the fields.
+//! J = det F [-], body index. `read_snapshot` reads a snapshot back (positions, time, the
+//! scalar and vector arrays), for charts and measures of the fields.
 
 use crate::kinematics::Kinematics;
 use crate::solver::observer::{Observer, Verdict, CONTINUE};
@@ -315,7 +315,8 @@ pub fn write_snapshot<const D: usize>(
     Ok(path)
 }
 
-/// A snapshot read back: its time, the point positions and every one-component array.
+/// A snapshot read back: its time, the point positions, every one- and three-component
+/// array.
 #[derive(Debug, Clone, Default)]
 pub struct Snapshot {
     /// [s]
@@ -324,9 +325,19 @@ pub struct Snapshot {
     pub position: Vec<[f64; 3]>,
     /// Scalar point arrays by name (`alpha`, `theta`, `alpha_rate`, `von_mises`, ...).
     pub scalars: Vec<(String, Vec<f64>)>,
+    /// Three-component point arrays by name (`velocity`).
+    pub vectors: Vec<(String, Vec<[f64; 3]>)>,
 }
 
 impl Snapshot {
+    /// The three-component array `name`.
+    pub fn vector(&self, name: &str) -> Option<&[[f64; 3]]> {
+        self.vectors
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| v.as_slice())
+    }
+
     /// The scalar array `name`.
     pub fn scalar(&self, name: &str) -> Option<&[f64]> {
         self.scalars
@@ -387,11 +398,16 @@ pub fn read_snapshot(path: &Path) -> io::Result<Snapshot> {
         };
         let offset: usize = offset.parse().map_err(|_| bad("a bad offset"))?;
         let components = attr(line, "NumberOfComponents").unwrap_or_default();
-        if name == "position" {
-            out.position = floats(block(offset)?)
+        let triples = |b: &[u8]| -> Vec<[f64; 3]> {
+            floats(b)
                 .chunks_exact(3)
                 .map(|c| [c[0], c[1], c[2]])
-                .collect();
+                .collect()
+        };
+        if name == "position" {
+            out.position = triples(block(offset)?);
+        } else if components == "3" {
+            out.vectors.push((name, triples(block(offset)?)));
         } else if components == "1" {
             out.scalars.push((name, floats(block(offset)?)));
         }

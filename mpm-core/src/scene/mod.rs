@@ -424,6 +424,8 @@ mod tests {
             solver.blocks[1].state.last().unwrap().theta as f32 as f64
         );
         assert_eq!(back.scalar("alpha_rate").unwrap().len(), n);
+        let v = back.vector("velocity").unwrap();
+        assert_eq!(v[3][0], solver.particles.velocity[3][0] as f32 as f64);
         let collection = std::fs::read_to_string(dir.join(crate::output::COLLECTION)).unwrap();
         let times: Vec<f64> = collection
             .lines()

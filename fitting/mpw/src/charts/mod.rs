@@ -60,6 +60,8 @@ pub struct LineChart {
     pub integer_x: bool,
     /// Mark each point (a few points per series, some series of one point).
     pub markers: bool,
+    /// A fixed y range (data outside it run off the frame); `None`: all finite points.
+    pub y_range: Option<(f64, f64)>,
 }
 
 const SIZE: (u32, u32) = (1000, 700);
@@ -77,7 +79,14 @@ impl LineChart {
             series: Vec::new(),
             integer_x: false,
             markers: false,
+            y_range: None,
         }
+    }
+
+    /// Show y in `lo..hi` only (short spikes run off the frame; say so in the title).
+    pub fn y_range(mut self, lo: f64, hi: f64) -> LineChart {
+        self.y_range = Some((lo, hi));
+        self
     }
 
     /// Ticks of the x axis only at whole numbers.
@@ -123,7 +132,7 @@ impl LineChart {
             };
             (lo - m, hi + m)
         };
-        let ((x0, x1), (y0, y1)) = (pad(x0, x1), pad(y0, y1));
+        let ((x0, x1), (y0, y1)) = (pad(x0, x1), self.y_range.unwrap_or(pad(y0, y1)));
         let curves: Vec<Vec<(f64, f64)>> = self
             .series
             .iter()

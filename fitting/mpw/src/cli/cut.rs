@@ -1,12 +1,14 @@
 //! `mpw cut`: metal cutting (thesis chapter 12, library `cutting`).
 //!
 //! - `mpw cut vertical --set G0`: the vertical cut at a set of table 12.2: the punch force
-//!   per unit thickness against relative feed (`force.csv`, `force.png`) and the relative
+//!   per unit thickness against relative feed (`force.csv`, `force.png`), a picture of the
+//!   sheet at the end coloured by plastic strain (`sheet.png`) and the relative
 //!   feed reached: "ran through" to the end feed, or where and why the run stopped.
 //! - `mpw cut orthogonal`: the orthogonal cut: tool forces f_x, f_y raw and
 //!   Savitzky-Golay filtered (31 history samples, first order; `force.csv`, `force.png`),
-//!   the shear angle measured in each snapshot from 20 µs on, the steady cutting force
-//!   against Merchant's estimate from that angle, and a picture of the chip (`chip.png`).
+//!   the shear angle in each snapshot from 20 µs on (from the chip's flow, and the
+//!   strain-rate band with its contrast), the steady cutting force against Merchant's
+//!   estimate from the mean angle, and a picture of the chip (`chip.png`).
 //! - `mpw cut map`: the stability map of the vertical cut: one run per grid spacing ×
 //!   points over the thickness, for each variant (shape function, grid shift), the feed
 //!   reached and the wall time in each cell (`map.csv`, `map_<variant>.png`).
@@ -99,6 +101,10 @@ pub struct OrthogonalArgs {
     /// Material file.
     #[arg(long, default_value = "data/materials/42crmo4_qt660.toml")]
     pub material: PathBuf,
+    /// Analyse the run already in the output folder (its scene must be this one) instead
+    /// of running it again: forces, shear angles, Merchant, chip picture.
+    #[arg(long)]
+    pub analyse_only: bool,
     #[command(flatten)]
     pub common: Common,
 }
@@ -277,18 +283,19 @@ fn vertical(args: VerticalArgs) -> Result<()> {
     )
     .with(Series::scaled("f_y", &feed, &force.force_y, 1.0, 1e-6))
     .write_png(&out.join("force.png"))?;
+    field_picture(&out, "sheet.png", &format!("vertical cut {}", set.name))?;
     run.report(&format!(
         "{} (dx = {} m, {})",
         set.name, set.spacing, args.common.shape_function
     ));
     match &run.summary.failure {
         None => println!(
-            "ran through to {:.0} % relative feed; force.csv, force.png, history and snapshots in {}",
+            "ran through to {:.0} % relative feed; force.csv, force.png, sheet.png, history and snapshots in {}",
             100.0 * args.feed,
             out.display()
         ),
         Some(e) => println!(
-            "stopped at {:.1} % relative feed: {e}\nforce.csv, force.png, history and snapshots up to there in {}",
+            "stopped at {:.1} % relative feed: {e}\nforce.csv, force.png, sheet.png, history and snapshots up to there in {}",
             100.0 * cut.feed_at(e.time),
             out.display()
         ),
@@ -335,7 +342,28 @@ fn orthogonal(args: OrthogonalArgs) -> Result<()> {
         args.depth,
         toml::to_string(&cut.scene(&resolution, &options))?
     );
-    let run = CutRun::start(&text, &out)?;
+    match args.analyse_only {
+        false => {
+            let run = CutRun::start(&text, &out)?;
+            run.report(&format!(
+                "orthogonal {name} ({})",
+                args.common.shape_function
+            ));
+            if let Some(e) = &run.summary.failure {
+                println!("stopped at t = {:.2} µs: {e}", e.time * 1e6);
+            }
+        }
+        true => {
+            let written = std::fs::read_to_string(out.join("scene.toml"))
+                .with_context(|| format!("{}: no run to analyse", out.display()))?;
+            if written != text {
+                anyhow::bail!(
+                    "{}: holds a run of another scene; give the options it was run with",
+                    out.join("scene.toml").display()
+                );
+            }
+        }
+    }
     let force = ToolForce::read(&out.join("history.csv"), "tool")?;
     let (fx, fy) = (
         FORCE_FILTER.apply(&force.force_x),
@@ -343,23 +371,18 @@ fn orthogonal(args: OrthogonalArgs) -> Result<()> {
     );
     write_orthogonal_forces(&out.join("force.csv"), &force, &fx, &fy)?;
     let us: Vec<f64> = force.time_s.iter().map(|t| t * 1e6).collect();
+    let ((lo, hi), off) = force_range(&[&force.force_x, &force.force_y]);
     LineChart::new(
-        format!("orthogonal cut {name}: tool forces"),
+        with_peak(format!("orthogonal cut {name}: tool forces"), off),
         "time [µs]",
         "force per unit width [MN/m]",
     )
+    .y_range(lo * 1e-6, hi * 1e-6)
     .with(Series::scaled("f_x raw", &us, &force.force_x, 1.0, 1e-6))
     .with(Series::scaled("f_y raw", &us, &force.force_y, 1.0, 1e-6))
     .with(Series::scaled("f_x filtered", &us, &fx, 1.0, 1e-6))
     .with(Series::scaled("f_y filtered", &us, &fy, 1.0, 1e-6))
     .write_png(&out.join("force.png"))?;
-    run.report(&format!(
-        "orthogonal {name} ({})",
-        args.common.shape_function
-    ));
-    if let Some(e) = &run.summary.failure {
-        println!("stopped at t = {:.2} µs: {e}", e.time * 1e6);
-    }
     let steady: Vec<f64> = (0..force.time_s.len())
         .filter(|&k| force.time_s[k] >= STEADY_FROM)
         .map(|k| fx[k])
@@ -375,6 +398,13 @@ fn orthogonal(args: OrthogonalArgs) -> Result<()> {
             friction: cut.friction,
         }
         .estimate(&material);
+        let spread = (angles.iter().map(|a| (a - phi).powi(2)).sum::<f64>()
+            / (angles.len().max(2) - 1) as f64)
+            .sqrt();
+        println!(
+            "shear angle from the chip flow: {phi:.1}° ± {spread:.1}° (mean ± sample std over {} snapshots)",
+            angles.len()
+        );
         println!(
             "steady f_x (filtered, t >= {:.0} µs): {:.3} MN/m; Merchant with φ_s = {phi:.1}°: {:.3} MN/m (shear zone ε = {:.2}, ε̇ = {:.2e} 1/s, θ = {:.0} K, τ_s = {:.0} MPa)",
             STEADY_FROM * 1e6,
@@ -386,12 +416,39 @@ fn orthogonal(args: OrthogonalArgs) -> Result<()> {
             estimate.shear_stress * 1e-6
         );
     }
-    chip_chart(&out, &format!("orthogonal cut {name}"))?;
+    field_picture(&out, "chip.png", &format!("orthogonal cut {name}"))?;
     println!(
         "force.csv, force.png, chip.png, history and snapshots in {}",
         out.display()
     );
     Ok(())
+}
+
+/// A y range [SI] for a force chart that shows the steady level: from the smallest value
+/// to 1.5 times the 99th percentile of the values (the first contact's impact peaks last a
+/// few samples and would flatten everything else), and the peak it leaves off, if any.
+fn force_range(series: &[&[f64]]) -> ((f64, f64), Option<f64>) {
+    let mut all: Vec<f64> = series
+        .iter()
+        .flat_map(|s| s.iter().copied())
+        .filter(|v| v.is_finite())
+        .collect();
+    all.sort_by(f64::total_cmp);
+    let (Some(&lo), Some(&peak)) = (all.first(), all.last()) else {
+        return ((0.0, 1.0), None);
+    };
+    let p99 = all[(0.99 * (all.len() - 1) as f64) as usize];
+    let hi = 1.5 * p99.max(0.0) + 1e-30;
+    let lo = lo.min(0.0) - 0.05 * (hi - lo.min(0.0));
+    ((lo, hi), (peak > hi).then_some(peak))
+}
+
+/// A force chart's title, with the peak left off its scale.
+fn with_peak(title: String, off_scale: Option<f64>) -> String {
+    match off_scale {
+        Some(p) => format!("{title} (peaks to {:.1} MN/m off the scale)", p * 1e-6),
+        None => title,
+    }
 }
 
 fn mean(values: &[f64]) -> Option<f64> {
@@ -421,8 +478,10 @@ fn snapshots(out: &Path) -> Result<Vec<PathBuf>> {
     Ok(files)
 }
 
-/// The shear angle of every snapshot from `STEADY_FROM` on [degrees], printed.
+/// The shear angle of every snapshot from `STEADY_FROM` on [degrees] from the chip's flow
+/// (Merchant's geometry), printed with the strain-rate band's angle and its contrast.
 fn shear_angles(out: &Path, cut: &OrthogonalCut) -> Result<Vec<f64>> {
+    use cutting::shear_angle::{from_chip_flow, from_snapshot, ChipGeometry};
     let mut angles = Vec::new();
     for file in snapshots(out)? {
         let snapshot = mpm_core::output::read_snapshot(&file)?;
@@ -430,24 +489,41 @@ fn shear_angles(out: &Path, cut: &OrthogonalCut) -> Result<Vec<f64>> {
             continue;
         }
         let [x, y] = cut.tip_at(snapshot.time);
-        match cutting::shear_angle::from_snapshot(&snapshot, (x, y), cut.height, 0.25 * cut.feed) {
-            Some(a) => {
-                println!(
-                    "  t = {:5.1} µs: shear angle {:.1}° (band contrast {:.1})",
-                    snapshot.time * 1e6,
-                    a.degrees,
-                    a.contrast
-                );
-                angles.push(a.degrees);
-            }
-            None => println!("  t = {:5.1} µs: no shear band found", snapshot.time * 1e6),
-        }
+        let geometry = ChipGeometry {
+            tip: (x, y),
+            y_surface: cut.height,
+            depth: cut.feed,
+            rake_deg: cut.rake_deg,
+            speed: cut.speed,
+        };
+        let velocity = snapshot
+            .vector("velocity")
+            .context("snapshot without velocity")?;
+        let flow = from_chip_flow(&snapshot.position, velocity, &geometry);
+        let band = from_snapshot(&snapshot, (x, y), cut.height, 0.25 * cut.feed);
+        let flow_text = flow.map_or("no chip yet".into(), |(phi, r)| {
+            format!("{phi:.1}° (chip thickness ratio {r:.3})")
+        });
+        let band_text = band.map_or("-".into(), |b| {
+            let clear = if b.contrast < 2.0 {
+                ", no clear band"
+            } else {
+                ""
+            };
+            format!("{:.1}° (contrast {:.1}{clear})", b.degrees, b.contrast)
+        });
+        println!(
+            "  t = {:5.1} µs: shear angle from the chip flow {flow_text}; strain-rate band {band_text}",
+            snapshot.time * 1e6
+        );
+        angles.extend(flow.map(|(phi, _)| phi));
     }
     Ok(angles)
 }
 
-/// The last snapshot's points coloured by equivalent plastic strain (a picture of the chip).
-fn chip_chart(out: &Path, title: &str) -> Result<()> {
+/// The last snapshot's points coloured by equivalent plastic strain (a picture of the chip
+/// or the cut sheet) into `out/<png>`.
+fn field_picture(out: &Path, png: &str, title: &str) -> Result<()> {
     use plotters::prelude::*;
     let Some(last) = snapshots(out)?.pop() else {
         return Ok(());
@@ -463,7 +539,7 @@ fn chip_chart(out: &Path, title: &str) -> Result<()> {
             )
         },
     );
-    let path = out.join("chip.png");
+    let path = out.join(png);
     let root = BitMapBackend::new(&path, (1000, 700)).into_drawing_area();
     root.fill(&WHITE)?;
     let mut chart = ChartBuilder::on(&root)
@@ -480,7 +556,10 @@ fn chip_chart(out: &Path, title: &str) -> Result<()> {
         .x_desc("x [mm]")
         .y_desc("y [mm]")
         .draw()?;
-    let top = alpha.iter().copied().fold(0.0, f64::max).max(1e-12);
+    // colour scale to the 95th percentile: a few molten points reach α of 7
+    let mut sorted: Vec<f64> = alpha.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let top = sorted[(0.95 * (sorted.len() - 1) as f64) as usize].max(1e-12);
     chart.draw_series(s.position.iter().zip(alpha).map(|(p, &a)| {
         let t = (a / top).clamp(0.0, 1.0);
         let colour = RGBColor(
@@ -678,6 +757,7 @@ fn repeat(args: RepeatArgs) -> Result<()> {
         "relative feed [%]",
         "coefficient of variation [-]",
     )
+    .y_range(0.0, 1.0)
     .with(Series::scaled("CV", &feed, &s.cv, 1.0, 1.0))
     .write_png(&args.out.join("cv.png"))?;
     let settled: Vec<f64> = (0..n)
