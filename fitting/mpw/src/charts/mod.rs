@@ -1,7 +1,7 @@
 //! Line charts of several labelled (x, y) series as PNG, with axis labels that carry the
-//! units. Axis ranges cover all finite points with a 5 % margin; non-finite points are
-//! left out of the drawing (the data files keep them); the legend covers no data
-//! (`legend`).
+//! units. Axis ranges cover all finite points with a 5 % margin, or a given y range (what
+//! runs off it is drawn along the frame); non-finite points are left out of the drawing
+//! (the data files keep them); the legend covers no data (`legend`).
 
 pub mod cell_map;
 pub mod fit;
@@ -83,7 +83,8 @@ impl LineChart {
         }
     }
 
-    /// Show y in `lo..hi` only (short spikes run off the frame; say so in the title).
+    /// Show y in `lo..hi` only: values beyond are drawn along the frame (say so in the
+    /// title).
     pub fn y_range(mut self, lo: f64, hi: f64) -> LineChart {
         self.y_range = Some((lo, hi));
         self
@@ -133,10 +134,19 @@ impl LineChart {
             (lo - m, hi + m)
         };
         let ((x0, x1), (y0, y1)) = (pad(x0, x1), self.y_range.unwrap_or(pad(y0, y1)));
+        // with a fixed y range, what runs off it is drawn along the frame (the title says so)
         let curves: Vec<Vec<(f64, f64)>> = self
             .series
             .iter()
-            .map(|s| finite_points(&s.points))
+            .map(|s| {
+                let points = finite_points(&s.points).into_iter();
+                let mut kept: Vec<(f64, f64)> = match self.y_range {
+                    Some(_) => points.map(|(x, y)| (x, y.clamp(y0, y1))).collect(),
+                    None => points.collect(),
+                };
+                kept.dedup();
+                kept
+            })
             .collect();
         let labels: Vec<&str> = self.series.iter().map(|s| s.label.as_str()).collect();
         let plot = (
@@ -173,12 +183,15 @@ impl LineChart {
             .draw()?;
         for (k, (s, points)) in self.series.iter().zip(curves).enumerate() {
             let color = Palette99::pick(k).to_rgba();
+            // a thick polyline's miter joins at sharp turns reach far off the frame: a
+            // series denser than the pixels is drawn one pixel wide
+            let width = if points.len() > SIZE.0 as usize { 1 } else { 2 };
             if self.markers {
                 let circles = points.iter().map(|&p| Circle::new(p, 4, color.filled()));
                 chart.draw_series(circles)?;
             }
             chart
-                .draw_series(LineSeries::new(points, color.stroke_width(2)))?
+                .draw_series(LineSeries::new(points, color.stroke_width(width)))?
                 .label(s.label.as_str())
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))

@@ -74,9 +74,16 @@ pub struct VerticalArgs {
     /// Relative feed at which the run ends (1 = 100 %, the sheet's thickness).
     #[arg(long, default_value_t = 1.2)]
     pub feed: f64,
+    /// Stiffness κ_BC of the spring conditions of the G sets [kg/s²] (the thesis: 1e7).
+    #[arg(long, default_value_t = 1e7)]
+    pub spring_stiffness: f64,
     /// Material file.
     #[arg(long, default_value = "data/materials/al7075_t6.toml")]
     pub material: PathBuf,
+    /// Chart the run already in the output folder (its scene must be this one) instead of
+    /// running it again.
+    #[arg(long)]
+    pub analyse_only: bool,
     #[command(flatten)]
     pub common: Common,
 }
@@ -148,6 +155,9 @@ pub struct RepeatArgs {
     pub material: PathBuf,
     #[arg(long, default_value = "out/cut_repeat")]
     pub out: PathBuf,
+    /// Chart the runs already in the output folder (each seed's scene must be this one).
+    #[arg(long)]
+    pub analyse_only: bool,
 }
 
 pub fn run(cut: Cut) -> Result<()> {
@@ -207,6 +217,19 @@ fn absolute(material: &Path) -> Result<String> {
     Ok(path.display().to_string())
 }
 
+/// The run in `out` is of the scene `text` (for `--analyse-only`).
+fn same_scene(out: &Path, text: &str) -> Result<()> {
+    let written = std::fs::read_to_string(out.join("scene.toml"))
+        .with_context(|| format!("{}: no run to analyse", out.display()))?;
+    if written != text {
+        anyhow::bail!(
+            "{}: holds a run of another scene; give the options it was run with",
+            out.join("scene.toml").display()
+        );
+    }
+    Ok(())
+}
+
 /// A finished cutting run: its summary and wall time [s].
 struct CutRun {
     summary: RunSummary,
@@ -259,7 +282,16 @@ fn vertical(args: VerticalArgs) -> Result<()> {
     }
     let out = (args.common.out.clone())
         .unwrap_or_else(|| Path::new("out").join(format!("cut_vertical_{}", set.name)));
-    let cut = VerticalCut::default();
+    if !(args.spring_stiffness > 0.0 && args.spring_stiffness.is_finite()) {
+        anyhow::bail!(
+            "--spring-stiffness {}: expected a positive stiffness in kg/s²",
+            args.spring_stiffness
+        );
+    }
+    let cut = VerticalCut {
+        spring_stiffness: args.spring_stiffness,
+        ..VerticalCut::default()
+    };
     let options = CutOptions {
         end_feed: args.feed,
         shape_function: args.common.shape_function.clone(),
@@ -268,7 +300,14 @@ fn vertical(args: VerticalArgs) -> Result<()> {
         material_file: absolute(&args.material)?,
         ..CutOptions::default()
     };
-    let run = CutRun::start(&vertical_scene_text(&cut, &set, &options)?, &out)?;
+    let text = vertical_scene_text(&cut, &set, &options)?;
+    let run = match args.analyse_only {
+        false => Some(CutRun::start(&text, &out)?),
+        true => {
+            same_scene(&out, &text)?;
+            None
+        }
+    };
     let force = ToolForce::read(&out.join("history.csv"), "punch")?;
     force.write_csv(&out.join("force.csv"), |t| cut.feed_at(t))?;
     let feed: Vec<f64> = force
@@ -276,14 +315,20 @@ fn vertical(args: VerticalArgs) -> Result<()> {
         .iter()
         .map(|&t| 100.0 * cut.feed_at(t))
         .collect();
+    let ((lo, hi), off) = force_range(&[&force.force_y]);
     LineChart::new(
-        format!("vertical cut {}: punch force", set.name),
+        with_peak(format!("vertical cut {}: punch force", set.name), off),
         "relative feed [%]",
         "punch force f_y per unit thickness [MN/m]",
     )
+    .y_range(lo * 1e-6, hi * 1e-6)
     .with(Series::scaled("f_y", &feed, &force.force_y, 1.0, 1e-6))
     .write_png(&out.join("force.png"))?;
     field_picture(&out, "sheet.png", &format!("vertical cut {}", set.name))?;
+    let Some(run) = run else {
+        println!("force.csv, force.png and sheet.png in {}", out.display());
+        return Ok(());
+    };
     run.report(&format!(
         "{} (dx = {} m, {})",
         set.name, set.spacing, args.common.shape_function
@@ -353,16 +398,7 @@ fn orthogonal(args: OrthogonalArgs) -> Result<()> {
                 println!("stopped at t = {:.2} µs: {e}", e.time * 1e6);
             }
         }
-        true => {
-            let written = std::fs::read_to_string(out.join("scene.toml"))
-                .with_context(|| format!("{}: no run to analyse", out.display()))?;
-            if written != text {
-                anyhow::bail!(
-                    "{}: holds a run of another scene; give the options it was run with",
-                    out.join("scene.toml").display()
-                );
-            }
-        }
+        true => same_scene(&out, &text)?,
     }
     let force = ToolForce::read(&out.join("history.csv"), "tool")?;
     let (fx, fy) = (
@@ -735,15 +771,20 @@ fn repeat(args: RepeatArgs) -> Result<()> {
     }
     std::fs::write(args.out.join("repeat.csv"), csv)?;
     let band = |sign: f64| -> Vec<f64> { (0..n).map(|k| s.mean[k] + sign * s.std[k]).collect() };
+    let ((lo, hi), off) = force_range(&[&band(1.0), &band(-1.0)]);
     LineChart::new(
-        format!(
-            "vertical cut {}: punch force over {} seeds",
-            set.name,
-            args.seeds.len()
+        with_peak(
+            format!(
+                "vertical cut {}: punch force over {} seeds",
+                set.name,
+                args.seeds.len()
+            ),
+            off,
         ),
         "relative feed [%]",
         "punch force f_y [MN/m]",
     )
+    .y_range(lo * 1e-6, hi * 1e-6)
     .with(Series::scaled("mean", &feed, &s.mean, 1.0, 1e-6))
     .with(Series::scaled("mean + std", &feed, &band(1.0), 1.0, 1e-6))
     .with(Series::scaled("mean − std", &feed, &band(-1.0), 1.0, 1e-6))
