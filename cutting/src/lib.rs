@@ -1,6 +1,7 @@
 //! Metal cutting with the explicit MPM (Maassen 2023, chapter 12): plane-strain cuts of a
 //! Johnson-Cook workpiece by a rigid tool, without damage, adiabatic, with Coulomb contact.
 //!
+//! - `workpiece`: what both cuts share: how a run goes, the workpiece on its grid;
 //! - `vertical`: the vertical cut of §12.2 (Al 7075-T6, a punch moving down past a die
 //!   edge), its discretization sets of table 12.2 (S: no grid shift, grid conditions; G:
 //!   grid shift dx/2, spring conditions eq. 12.1), and the scene each set runs;
@@ -23,3 +24,4 @@ pub mod record;
 pub mod repeatability;
 pub mod shear_angle;
 pub mod vertical;
+pub mod workpiece;

@@ -78,12 +78,10 @@ mod tests {
     use materials::flow_stress::{FlowStress, JohnsonCookLaw};
     use materials::plasticity::{ReturnMap, Thermal};
 
-    /// A perfectly plastic, rate- and temperature-free material (B = C = 0, θm = 1e15 K):
-    /// F_c = (A/√3) h cos(β − α)/(sin φ cos(φ + β − α)) exactly; at α = 0, μ = 0 and
-    /// φ = 45° that is 2 (A/√3) h; friction raises it.
-    #[test]
-    fn a_perfectly_plastic_material_gives_merchant_s_closed_form() {
-        let m = ElastoPlastic {
+    /// A steel with A = 500 MPa, hardening B ε^N, no rate term and θm = 1e15 K (no thermal
+    /// softening).
+    fn steel(b: f64, n: f64) -> ElastoPlastic<f64> {
+        ElastoPlastic {
             elastic: materials::elastic::Elastic {
                 e: 200e9,
                 nu: 0.3,
@@ -91,8 +89,8 @@ mod tests {
             },
             flow: FlowStress::JohnsonCook(JohnsonCookLaw {
                 a: 500e6,
-                b: 0.0,
-                n: 0.5,
+                b,
+                n,
                 c: 0.0,
                 m: 1.0,
                 alpha_dot0: 1.0,
@@ -105,7 +103,15 @@ mod tests {
                 gamma_tq: 0.9,
             },
             return_map: ReturnMap::Principal,
-        };
+        }
+    }
+
+    /// A perfectly plastic, rate- and temperature-free material (B = C = 0, θm = 1e15 K):
+    /// F_c = (A/√3) h cos(β − α)/(sin φ cos(φ + β − α)) exactly; at α = 0, μ = 0 and
+    /// φ = 45° that is 2 (A/√3) h; friction raises it.
+    #[test]
+    fn a_perfectly_plastic_material_gives_merchant_s_closed_form() {
+        let m = steel(0.0, 0.5);
         let cut = Merchant {
             depth: 0.3e-3,
             speed: 40.0,
@@ -140,29 +146,7 @@ mod tests {
     /// hardening σ = A + B ε (N = 1, no thermal softening) θ − θ0 = γ_TQ (A ε + B ε²/2)/(ρ c).
     #[test]
     fn the_shear_zone_heats_by_its_plastic_work() {
-        let m = ElastoPlastic {
-            elastic: materials::elastic::Elastic {
-                e: 200e9,
-                nu: 0.3,
-                rho: 7800.0,
-            },
-            flow: FlowStress::JohnsonCook(JohnsonCookLaw {
-                a: 500e6,
-                b: 300e6,
-                n: 1.0,
-                c: 0.0,
-                m: 1.0,
-                alpha_dot0: 1.0,
-                theta_m: 1e15,
-            }),
-            thermal: Thermal {
-                theta0: 293.15,
-                c_theta: 460.0,
-                alpha_sigma: 1e-5,
-                gamma_tq: 0.9,
-            },
-            return_map: ReturnMap::Principal,
-        };
+        let m = steel(300e6, 1.0);
         let f = Merchant {
             depth: 0.3e-3,
             speed: 40.0,

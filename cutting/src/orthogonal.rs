@@ -10,10 +10,11 @@
 //! that the tool travels 3.2 mm in 80 µs and the chip does not reach the workpiece's left
 //! end; the tip starts 50 µm right of the workpiece; no friction unless asked (§12.1).
 
-use mpm_core::scene::spec::{
-    BodySpec, BoxSpec, GridSpec, MaterialSpec, OutputSpec, RigidShapeSpec, RigidSpec, SceneFile,
-    ShapeSpec, SolverSpec, SpringSpec, TimeSpec,
-};
+use crate::workpiece::{self, RunOptions, Workpiece};
+use mpm_core::scene::spec::{BoxSpec, RigidShapeSpec, RigidSpec, SceneFile, SpringSpec};
+
+/// The material file as a scene in `data/scenes/cutting/` names it.
+pub const MATERIAL: &str = "../../materials/42crmo4_qt660.toml";
 
 /// The workpiece, tool and conditions (module docs for the choices). SI units, angles in
 /// degrees.
@@ -60,34 +61,6 @@ pub struct Resolution {
     pub points_y: usize,
 }
 
-/// How one orthogonal cut runs.
-#[derive(Debug, Clone, PartialEq)]
-pub struct OrthogonalOptions {
-    pub shape_function: String,
-    /// A fixed time step [s] (the thesis: 2e-10); `None`: the solver's stability limit.
-    pub dt: Option<f64>,
-    pub safety: f64,
-    /// Seed of the grid shift.
-    pub seed: u64,
-    pub history_every: usize,
-    pub snapshots: usize,
-    pub material_file: String,
-}
-
-impl Default for OrthogonalOptions {
-    fn default() -> Self {
-        OrthogonalOptions {
-            shape_function: "linear".into(),
-            dt: None,
-            safety: 0.5,
-            seed: 1,
-            history_every: 10,
-            snapshots: 16,
-            material_file: "../../materials/42crmo4_qt660.toml".into(),
-        }
-    }
-}
-
 impl OrthogonalCut {
     /// The tool tip at t = 0 [m].
     pub fn tip(&self) -> [f64; 2] {
@@ -115,83 +88,43 @@ impl OrthogonalCut {
     }
 
     /// The scene at `resolution` run with `options`.
-    pub fn scene(&self, resolution: &Resolution, options: &OrthogonalOptions) -> SceneFile {
+    pub fn scene(&self, resolution: &Resolution, options: &RunOptions) -> SceneFile {
         let n = resolution.points_y;
         let region = |max: [f64; 2]| BoxSpec {
             min: vec![-1.0, -1.0],
             max: max.to_vec(),
         };
-        SceneFile {
-            kinematics: "plane-strain".into(),
-            grid: GridSpec {
-                spacing: resolution.spacing,
-                origin: Some(vec![0.0, 0.0]),
-                shift: Some(vec![0.5 * resolution.spacing; 2]),
-                seed: options.seed,
+        let spring = |max: [f64; 2], axes: &[&str]| SpringSpec {
+            region: region(max),
+            directions: axes.iter().map(|a| a.to_string()).collect(),
+            stiffness: self.spring_stiffness,
+        };
+        let body = Workpiece {
+            material: "42crmo4",
+            body: "workpiece",
+            size: [self.length, self.height],
+            points: [3 * n, n],
+        };
+        let mut scene = workpiece::scene(&body, resolution.spacing, true, self.end, options);
+        scene.rigid_bodies = vec![RigidSpec {
+            name: "tool".into(),
+            shape: RigidShapeSpec::Polygon {
+                vertices: self.tool_vertices(),
             },
-            time: TimeSpec {
-                end: self.end,
-                dt: options.dt,
-                safety: Some(options.safety),
-                scheme: None,
-            },
-            solver: SolverSpec {
-                shape_function: Some(options.shape_function.clone()),
-                ..SolverSpec::default()
-            },
-            materials: vec![MaterialSpec {
-                name: "42crmo4".into(),
-                file: Some(options.material_file.clone()),
-                neo_hooke: None,
-                parameters: None,
-            }],
-            bodies: vec![BodySpec {
-                name: "workpiece".into(),
-                material: "42crmo4".into(),
-                shape: ShapeSpec::Box {
-                    min: vec![0.0, 0.0],
-                    max: vec![self.length, self.height],
-                },
-                particles_per_cell: 2,
-                points: Some(vec![3 * n, n]),
-                velocity: None,
-                shape_function: None,
-            }],
-            rigid_bodies: vec![RigidSpec {
-                name: "tool".into(),
-                shape: RigidShapeSpec::Polygon {
-                    vertices: self.tool_vertices(),
-                },
-                penalty: self.penalty,
-                friction: self.friction,
-                search_interval: None,
-                translation: Some(vec![
-                    vec![0.0, 0.0, 0.0],
-                    vec![self.end, -self.speed * self.end, 0.0],
-                ]),
-                rotation: None,
-            }],
-            velocity_bcs: Vec::new(),
-            springs: vec![
-                SpringSpec {
-                    region: region([self.length + 1.0, self.spring_layer]),
-                    directions: vec!["x".into(), "y".into()],
-                    stiffness: self.spring_stiffness,
-                },
-                SpringSpec {
-                    region: region([self.spring_layer, self.height + 1.0]),
-                    directions: vec!["y".into()],
-                    stiffness: self.spring_stiffness,
-                },
-            ],
-            tractions: Vec::new(),
-            traction_history: None,
-            control_points: Vec::new(),
-            output: OutputSpec {
-                history_every: options.history_every,
-                snapshots: options.snapshots,
-            },
-        }
+            penalty: self.penalty,
+            friction: self.friction,
+            search_interval: None,
+            translation: Some(vec![
+                vec![0.0, 0.0, 0.0],
+                vec![self.end, -self.speed * self.end, 0.0],
+            ]),
+            rotation: None,
+        }];
+        scene.springs = vec![
+            spring([self.length + 1.0, self.spring_layer], &["x", "y"]),
+            spring([self.spring_layer, self.height + 1.0], &["y"]),
+        ];
+        scene
     }
 }
 
@@ -222,7 +155,7 @@ mod tests {
                 spacing: 2e-4,
                 points_y: 80,
             },
-            &OrthogonalOptions::default(),
+            &RunOptions::new(MATERIAL),
         );
         let scene = mpm_core::scene::from_description(&spec, &file).unwrap();
         let mpm_core::scene::Simulation::Planar(s) = scene.simulation else {

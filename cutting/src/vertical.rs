@@ -13,19 +13,23 @@
 //! Boundary conditions. G sets (grid shift): springs eq. 12.1,
 //! f = κ_BC ((X_MP)_i − (x_MP)_i) with κ_BC = 1e7 kg/s², on Γ1 = the points with
 //! X_y ≤ 4e-5 m and X_x ≤ 2/3 l_x (the thesis prints ∨; ∧ is meant: the bottom layer over
-//! the die) in x and y, and on Γ2 = the points with X_x ≤ 4e-5 m in y. S sets (no shift):
+//! the die) in x and y, and on Γ2 = the points with X_x ≤ 4e-5 m in y (for point spacings
+//! above the thesis's 50 µm the layers reach 0.6 of a spacing, to hold the first row). S sets (no shift):
 //! the same regions as grid conditions, v_x = v_y = 0 on the nodes with y ≤ 0 and
 //! x ≤ 2/3 l_x, v_y = 0 on the nodes with x ≤ 0 (the thesis's grid-condition text swaps
 //! Γ1 and Γ2 and would hold the strip too; its spring text is followed for both).
 //!
 //! Time step: the thesis uses 5e-10 s (1e-10 s for n_y = 200), 1-5 % of the CFL limit,
 //! without a reason; here the solver's own limit (CFL and the stability of the stiffest
-//! penalty or spring on the lightest point) unless `CutOptions::dt` is given.
+//! penalty or spring on the lightest point) unless `RunOptions::dt` is given.
 
+use crate::workpiece::{self, RunOptions, Workpiece};
 use mpm_core::scene::spec::{
-    BodySpec, BoxSpec, GridSpec, MaterialSpec, NodeSetSpec, OutputSpec, RigidShapeSpec, RigidSpec,
-    SceneFile, ShapeSpec, SolverSpec, SpringSpec, TimeSpec, VelocityBcSpec,
+    BoxSpec, NodeSetSpec, RigidShapeSpec, RigidSpec, SceneFile, SpringSpec, VelocityBcSpec,
 };
+
+/// The material file of the shipped scenes (relative to `data/scenes/cutting/`).
+pub const MATERIAL: &str = "../../materials/al7075_t6.toml";
 
 /// One discretization of table 12.2: grid spacing dx = dy [m], points over the thickness
 /// n_y (n_x = 3 n_y), and whether the grid shifts (by dx/2, with spring conditions).
@@ -101,40 +105,6 @@ impl Default for VerticalCut {
     }
 }
 
-/// How one cut runs.
-#[derive(Debug, Clone, PartialEq)]
-pub struct CutOptions {
-    /// Relative feed at the end of the run [-] (1 = 100 %).
-    pub end_feed: f64,
-    /// The points' shape functions (`mpm_core::shape::ShapeFunction::NAMES`).
-    pub shape_function: String,
-    /// A fixed time step [s]; `None`: the solver's stability limit times `safety`.
-    pub dt: Option<f64>,
-    pub safety: f64,
-    /// Seed of the grid shift.
-    pub seed: u64,
-    /// History rows every this many steps; snapshots over the run.
-    pub history_every: usize,
-    pub snapshots: usize,
-    /// The material file, as the scene will name it (relative to the scene's folder).
-    pub material_file: String,
-}
-
-impl Default for CutOptions {
-    fn default() -> Self {
-        CutOptions {
-            end_feed: 1.2,
-            shape_function: "linear".into(),
-            dt: None,
-            safety: 0.5,
-            seed: 1,
-            history_every: 10,
-            snapshots: 12,
-            material_file: "../../materials/al7075_t6.toml".into(),
-        }
-    }
-}
-
 fn boxed(min: [f64; 2], max: [f64; 2]) -> BoxSpec {
     BoxSpec {
         min: min.to_vec(),
@@ -153,122 +123,77 @@ impl VerticalCut {
         2.0 / 3.0 * self.length
     }
 
-    /// The scene of `set` run with `options`.
-    pub fn scene(&self, set: &Discretization, options: &CutOptions) -> SceneFile {
+    /// The scene of `set` run to the relative feed `end_feed` with `options`.
+    pub fn scene(&self, set: &Discretization, end_feed: f64, options: &RunOptions) -> SceneFile {
         let (lx, ly) = (self.length, self.thickness);
-        let end = options.end_feed * self.full_feed_time;
+        let end = end_feed * self.full_feed_time;
         let edge = self.die_edge() + self.clearance;
         let (far, top) = (lx + 1e-3, ly + 2e-3);
         let far_below = -1.0;
-        SceneFile {
-            kinematics: "plane-strain".into(),
-            grid: GridSpec {
-                spacing: set.spacing,
-                origin: Some(vec![0.0, 0.0]),
-                shift: set.shift.then(|| vec![0.5 * set.spacing; 2]),
-                seed: options.seed,
-            },
-            time: TimeSpec {
-                end,
-                dt: options.dt,
-                safety: Some(options.safety),
-                scheme: None,
-            },
-            solver: SolverSpec {
-                shape_function: Some(options.shape_function.clone()),
-                ..SolverSpec::default()
-            },
-            materials: vec![MaterialSpec {
-                name: "al7075".into(),
-                file: Some(options.material_file.clone()),
-                neo_hooke: None,
-                parameters: None,
-            }],
-            bodies: vec![BodySpec {
-                name: "sheet".into(),
-                material: "al7075".into(),
-                shape: ShapeSpec::Box {
-                    min: vec![0.0, 0.0],
-                    max: vec![lx, ly],
-                },
-                particles_per_cell: 2,
-                points: Some(vec![3 * set.points_y, set.points_y]),
-                velocity: None,
-                shape_function: None,
-            }],
-            rigid_bodies: vec![RigidSpec {
-                name: "punch".into(),
-                shape: RigidShapeSpec::Polygon {
-                    vertices: vec![
-                        vec![edge, ly],
-                        vec![far, ly],
-                        vec![far, top],
-                        vec![edge, top],
-                    ],
-                },
-                penalty: self.penalty,
-                friction: self.friction,
-                search_interval: None,
-                translation: Some(vec![
-                    vec![0.0, 0.0, 0.0],
-                    vec![end, 0.0, -self.punch_speed() * end],
-                ]),
-                rotation: None,
-            }],
-            velocity_bcs: match set.shift {
-                true => Vec::new(),
-                false => vec![
-                    VelocityBcSpec {
-                        nodes: NodeSetSpec {
-                            plane: None,
-                            below: None,
-                            above: None,
-                            at: None,
-                            inside: Some(boxed([far_below, far_below], [self.die_edge(), 0.0])),
-                        },
-                        fixed: vec!["x".into(), "y".into()],
-                        value: None,
-                        one_sided: false,
-                        history: None,
-                    },
-                    VelocityBcSpec {
-                        nodes: NodeSetSpec {
-                            plane: None,
-                            below: Some("x".into()),
-                            above: None,
-                            at: Some(0.0),
-                            inside: None,
-                        },
-                        fixed: vec!["y".into()],
-                        value: None,
-                        one_sided: false,
-                        history: None,
-                    },
+        let sheet = Workpiece {
+            material: "al7075",
+            body: "sheet",
+            size: [lx, ly],
+            points: [3 * set.points_y, set.points_y],
+        };
+        let mut scene = workpiece::scene(&sheet, set.spacing, set.shift, end, options);
+        scene.rigid_bodies = vec![RigidSpec {
+            name: "punch".into(),
+            shape: RigidShapeSpec::Polygon {
+                vertices: vec![
+                    vec![edge, ly],
+                    vec![far, ly],
+                    vec![far, top],
+                    vec![edge, top],
                 ],
             },
-            springs: match set.shift {
-                false => Vec::new(),
-                true => vec![
-                    SpringSpec {
-                        region: boxed([far_below, far_below], [self.die_edge(), self.spring_layer]),
-                        directions: vec!["x".into(), "y".into()],
-                        stiffness: self.spring_stiffness,
-                    },
-                    SpringSpec {
-                        region: boxed([far_below, far_below], [self.spring_layer, top]),
-                        directions: vec!["y".into()],
-                        stiffness: self.spring_stiffness,
-                    },
-                ],
-            },
-            tractions: Vec::new(),
-            traction_history: None,
-            control_points: Vec::new(),
-            output: OutputSpec {
-                history_every: options.history_every,
-                snapshots: options.snapshots,
-            },
+            penalty: self.penalty,
+            friction: self.friction,
+            search_interval: None,
+            translation: Some(vec![
+                vec![0.0, 0.0, 0.0],
+                vec![end, 0.0, -self.punch_speed() * end],
+            ]),
+            rotation: None,
+        }];
+        let nodes = |below: Option<&str>, at: Option<f64>, inside: Option<BoxSpec>| NodeSetSpec {
+            plane: None,
+            below: below.map(Into::into),
+            above: None,
+            at,
+            inside,
+        };
+        let fixed = |nodes: NodeSetSpec, axes: &[&str]| VelocityBcSpec {
+            nodes,
+            fixed: axes.iter().map(|a| a.to_string()).collect(),
+            value: None,
+            one_sided: false,
+            history: None,
+        };
+        // the thesis's layer holds the first row of its point spacings (≤ 50 µm); a coarser
+        // spacing needs a layer down to 0.6 of a spacing to hold its first row
+        let layer = self.spring_layer.max(0.6 * ly / set.points_y as f64);
+        let spring = |max: [f64; 2], axes: &[&str]| SpringSpec {
+            region: boxed([far_below, far_below], max),
+            directions: axes.iter().map(|a| a.to_string()).collect(),
+            stiffness: self.spring_stiffness,
+        };
+        match set.shift {
+            true => {
+                scene.springs = vec![
+                    spring([self.die_edge(), layer], &["x", "y"]),
+                    spring([layer, top], &["y"]),
+                ]
+            }
+            false => {
+                let support = boxed([far_below, far_below], [self.die_edge(), 0.0]);
+                scene.velocity_bcs = vec![
+                    fixed(nodes(None, None, Some(support)), &["x", "y"]),
+                    fixed(nodes(Some("x"), Some(0.0), None), &["y"]),
+                ]
+            }
         }
+        scene
     }
 
     /// Relative feed at time `t` [s]: punch travel over the thickness [-].
@@ -292,7 +217,7 @@ mod tests {
             10800, 30000, 120000, 10800, 30000, 120000, 30000, 120000, 10800, 120000,
         ];
         for (set, nomp) in SETS.iter().zip(nomp) {
-            let spec = cut.scene(set, &CutOptions::default());
+            let spec = cut.scene(set, 1.2, &RunOptions::new(MATERIAL));
             let scene = mpm_core::scene::from_description(&spec, &scenes).unwrap();
             let mpm_core::scene::Simulation::Planar(s) = scene.simulation else {
                 panic!("plane strain")

@@ -18,15 +18,32 @@ fn mpw(args: &[&str]) -> std::process::Output {
         .unwrap()
 }
 
+/// `mpw args`, which must succeed; its standard output.
+fn mpw_ok(args: &[&str]) -> String {
+    let out = mpw(args);
+    let text = String::from_utf8_lossy(&out.stdout).to_string();
+    assert!(
+        out.status.success(),
+        "{args:?}: {text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    text
+}
+
+/// The numeric rows of a CSV file after its header.
+fn numbers(path: &Path) -> Vec<Vec<f64>> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect()
+}
+
 #[test]
 fn the_shipped_cutting_scenes_are_the_generator_s() {
     let dir = std::env::temp_dir().join(format!("mpw-cut-scenes-{}", std::process::id()));
-    let out = mpw(&["cut", "scenes", "--out", dir.to_str().unwrap()]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    mpw_ok(&["cut", "scenes", "--out", dir.to_str().unwrap()]);
     let shipped = root().join("data/scenes/cutting");
     let mut count = 0;
     for entry in std::fs::read_dir(&dir).unwrap() {
@@ -48,33 +65,16 @@ fn the_shipped_cutting_scenes_are_the_generator_s() {
 #[test]
 fn a_short_vertical_cut_loads_the_punch() {
     let dir = std::env::temp_dir().join(format!("mpw-cut-g0-{}", std::process::id()));
-    let out = mpw(&[
-        "cut",
-        "vertical",
-        "--set",
-        "G0",
-        "--feed",
-        "0.04",
-        "--out",
-        dir.to_str().unwrap(),
+    let out = dir.to_str().unwrap();
+    let text = mpw_ok(&[
+        "cut", "vertical", "--set", "G0", "--feed", "0.04", "--out", out,
     ]);
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{text}{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     assert!(
         text.contains("G0 (dx = 0.0001 m, linear): 10800 points"),
         "{text}"
     );
     assert!(text.contains("ran through to 4 % relative feed"), "{text}");
-    let table = std::fs::read_to_string(dir.join("force.csv")).unwrap();
-    let rows: Vec<Vec<f64>> = table
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
-        .collect();
+    let rows = numbers(&dir.join("force.csv"));
     // feed = t / 20 µs; no force before the punch touches, compression after
     for r in &rows {
         assert!((r[0] - r[1] / 20e-6).abs() < 1e-12, "{r:?}");
@@ -94,7 +94,9 @@ fn a_short_vertical_cut_loads_the_punch() {
 #[test]
 fn a_small_stability_map_writes_its_cells() {
     let dir = std::env::temp_dir().join(format!("mpw-cut-map-{}", std::process::id()));
-    let out = mpw(&[
+    let out = dir.to_str().unwrap();
+    let variants = "linear,linear+shift";
+    mpw_ok(&[
         "cut",
         "map",
         "--spacings",
@@ -102,17 +104,12 @@ fn a_small_stability_map_writes_its_cells() {
         "--points",
         "60",
         "--variants",
-        "linear,linear+shift",
+        variants,
         "--feed",
         "0.02",
         "--out",
-        dir.to_str().unwrap(),
+        out,
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     let table = std::fs::read_to_string(dir.join("map.csv")).unwrap();
     let rows: Vec<&str> = table.lines().skip(1).collect();
     assert_eq!(rows.len(), 2, "{table}");
@@ -137,7 +134,7 @@ fn a_small_stability_map_writes_its_cells() {
 #[test]
 fn repeated_runs_give_the_force_spread() {
     let dir = std::env::temp_dir().join(format!("mpw-cut-repeat-{}", std::process::id()));
-    let out = mpw(&[
+    mpw_ok(&[
         "cut",
         "repeat",
         "--seeds",
@@ -147,17 +144,7 @@ fn repeated_runs_give_the_force_spread() {
         "--out",
         dir.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let table = std::fs::read_to_string(dir.join("repeat.csv")).unwrap();
-    let rows: Vec<Vec<f64>> = table
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
-        .collect();
+    let rows = numbers(&dir.join("repeat.csv"));
     assert!(rows.len() > 40, "{}", rows.len());
     let loaded: Vec<&Vec<f64>> = rows.iter().filter(|r| r[2] != 0.0).collect();
     assert!(!loaded.is_empty());

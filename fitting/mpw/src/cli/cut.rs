@@ -23,9 +23,10 @@
 use crate::charts::{LineChart, Series};
 use anyhow::{Context, Result};
 use cutting::merchant::Merchant;
-use cutting::orthogonal::{OrthogonalCut, OrthogonalOptions, Resolution};
+use cutting::orthogonal::{OrthogonalCut, Resolution};
 use cutting::record::ToolForce;
-use cutting::vertical::{discretization, CutOptions, Discretization, VerticalCut, SETS};
+use cutting::vertical::{discretization, Discretization, VerticalCut, SETS};
+use cutting::workpiece::RunOptions;
 use fitting::experiment::processing::SavitzkyGolay;
 use mpm_core::run::RunSummary;
 use std::path::{Path, PathBuf};
@@ -47,6 +48,9 @@ pub enum Cut {
     },
 }
 
+/// The relative feed a shipped vertical scene runs to.
+const END_FEED: f64 = 1.2;
+
 /// What every cut takes.
 #[derive(clap::Args, Debug, Clone)]
 pub struct Common {
@@ -63,6 +67,18 @@ pub struct Common {
     /// Output folder.
     #[arg(long)]
     pub out: Option<PathBuf>,
+}
+
+impl Common {
+    /// The run options with `material` (made absolute: the scene is written elsewhere).
+    fn options(&self, material: &Path) -> Result<RunOptions> {
+        Ok(RunOptions {
+            shape_function: self.shape_function.clone(),
+            dt: self.dt,
+            seed: self.seed,
+            ..RunOptions::new(absolute(material)?)
+        })
+    }
 }
 
 #[derive(clap::Args, Debug)]
@@ -177,7 +193,12 @@ fn scenes(out: &Path) -> Result<()> {
         let path = out.join(format!("vertical_{}.toml", set.name));
         std::fs::write(
             &path,
-            vertical_scene_text(&cut, set, &CutOptions::default())?,
+            vertical_scene_text(
+                &cut,
+                set,
+                END_FEED,
+                &RunOptions::new(cutting::vertical::MATERIAL),
+            )?,
         )
         .with_context(|| format!("{}: cannot write", path.display()))?;
         println!("{}", path.display());
@@ -189,7 +210,8 @@ fn scenes(out: &Path) -> Result<()> {
 fn vertical_scene_text(
     cut: &VerticalCut,
     set: &Discretization,
-    options: &CutOptions,
+    end_feed: f64,
+    options: &RunOptions,
 ) -> Result<String> {
     let shift = match set.shift {
         true => "grid shift dx/2 and spring conditions (eq. 12.1)",
@@ -205,7 +227,7 @@ fn vertical_scene_text(
         3 * set.points_y,
         set.points_y,
         set.name,
-        toml::to_string(&cut.scene(set, options))?
+        toml::to_string(&cut.scene(set, end_feed, options))?
     ))
 }
 
@@ -292,15 +314,8 @@ fn vertical(args: VerticalArgs) -> Result<()> {
         spring_stiffness: args.spring_stiffness,
         ..VerticalCut::default()
     };
-    let options = CutOptions {
-        end_feed: args.feed,
-        shape_function: args.common.shape_function.clone(),
-        dt: args.common.dt,
-        seed: args.common.seed,
-        material_file: absolute(&args.material)?,
-        ..CutOptions::default()
-    };
-    let text = vertical_scene_text(&cut, &set, &options)?;
+    let options = args.common.options(&args.material)?;
+    let text = vertical_scene_text(&cut, &set, args.feed, &options)?;
     let run = match args.analyse_only {
         false => Some(CutRun::start(&text, &out)?),
         true => {
@@ -371,13 +386,7 @@ fn orthogonal(args: OrthogonalArgs) -> Result<()> {
     let name = format!("dx{}_ny{}", args.spacing, args.points);
     let out = (args.common.out.clone())
         .unwrap_or_else(|| Path::new("out").join(format!("cut_orthogonal_{name}")));
-    let options = OrthogonalOptions {
-        shape_function: args.common.shape_function.clone(),
-        dt: args.common.dt,
-        seed: args.common.seed,
-        material_file: absolute(&args.material)?,
-        ..OrthogonalOptions::default()
-    };
+    let options = args.common.options(&args.material)?;
     let text = format!(
         "# Orthogonal cut, thesis section 12.3: dx = {} m, {} x {} points, depth of cut {} m.\n\
          # Written by `mpw cut orthogonal` (cutting::orthogonal explains every chosen value).\n{}",
@@ -639,31 +648,37 @@ fn map(args: MapArgs) -> Result<()> {
                     points_y,
                     shift,
                 };
-                let options = CutOptions {
-                    end_feed: args.feed,
+                let options = RunOptions {
                     shape_function: kernel.to_string(),
-                    material_file: material.clone(),
                     snapshots: 2,
-                    ..CutOptions::default()
+                    ..RunOptions::new(&material)
                 };
                 let folder = args.out.join(format!("{variant}_dx{spacing}_ny{points_y}"));
                 println!("{variant}, dx = {spacing} m, {points_y} points over the thickness:");
-                let run = CutRun::start(&vertical_scene_text(&cut, &set, &options)?, &folder)?;
-                run.report(&format!("  {variant}"));
-                let (feed, stop) = match &run.summary.failure {
-                    None => (args.feed, "ran through".to_string()),
-                    Some(e) if e.cause == mpm_core::Cause::Interrupted => {
-                        eprintln!("interrupted: the map holds the cells run before");
-                        break 'map;
+                let text = vertical_scene_text(&cut, &set, args.feed, &options)?;
+                let (feed, stop, wall_s) = match CutRun::start(&text, &folder) {
+                    Err(e) => {
+                        println!("  not run: {e:#}");
+                        (f64::NAN, format!("not run: {e:#}"), f64::NAN)
                     }
-                    Some(e) => (cut.feed_at(e.time), e.cause.to_string()),
+                    Ok(run) => {
+                        run.report(&format!("  {variant}"));
+                        match &run.summary.failure {
+                            None => (args.feed, "ran through".to_string(), run.wall_s),
+                            Some(e) if e.cause == mpm_core::Cause::Interrupted => {
+                                eprintln!("interrupted: the map holds the cells run before");
+                                break 'map;
+                            }
+                            Some(e) => (cut.feed_at(e.time), e.cause.to_string(), run.wall_s),
+                        }
+                    }
                 };
                 cells.push(Cell {
                     variant: variant.clone(),
                     spacing,
                     points: points_y,
                     feed,
-                    wall_s: run.wall_s,
+                    wall_s,
                     stop,
                 });
             }
@@ -701,10 +716,11 @@ fn map(args: MapArgs) -> Result<()> {
                     let column = args.spacings.iter().position(|&s| s == c.spacing).unwrap();
                     let row = args.points.iter().position(|&n| n == c.points).unwrap();
                     let text = match c.feed >= args.feed {
+                        _ if c.feed.is_nan() => "not run".to_string(),
                         true => format!("ran through\n{:.0} s", c.wall_s),
                         false => format!("{:.0} %\n{:.0} s", 100.0 * c.feed, c.wall_s),
                     };
-                    (column, row, c.feed / args.feed, text)
+                    (column, row, c.feed.max(0.0) / args.feed, text)
                 })
                 .collect(),
         }
@@ -732,21 +748,24 @@ fn repeat(args: RepeatArgs) -> Result<()> {
     let mut forces = Vec::new();
     let mut time = Vec::new();
     for &seed in &args.seeds {
-        let options = CutOptions {
-            end_feed: args.feed,
+        let options = RunOptions {
             seed,
-            material_file: material.clone(),
             snapshots: 2,
-            ..CutOptions::default()
+            ..RunOptions::new(&material)
         };
         let folder = args.out.join(format!("seed_{seed}"));
-        let run = CutRun::start(&vertical_scene_text(&cut, &set, &options)?, &folder)?;
-        run.report(&format!("{} seed {seed}", set.name));
-        if let Some(e) = &run.summary.failure {
-            println!(
-                "  stopped at {:.1} % relative feed: {e}",
-                100.0 * cut.feed_at(e.time)
-            );
+        let text = vertical_scene_text(&cut, &set, args.feed, &options)?;
+        if args.analyse_only {
+            same_scene(&folder, &text)?;
+        } else {
+            let run = CutRun::start(&text, &folder)?;
+            run.report(&format!("{} seed {seed}", set.name));
+            if let Some(e) = &run.summary.failure {
+                println!(
+                    "  stopped at {:.1} % relative feed: {e}",
+                    100.0 * cut.feed_at(e.time)
+                );
+            }
         }
         let force = ToolForce::read(&folder.join("history.csv"), "punch")?;
         if force.time_s.len() > time.len() {

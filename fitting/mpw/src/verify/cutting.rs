@@ -12,7 +12,8 @@
 
 use crate::verify::row::Row;
 use crate::verify::Inputs;
-use cutting::vertical::{discretization, CutOptions, VerticalCut};
+use cutting::vertical::{discretization, VerticalCut};
+use cutting::workpiece::RunOptions;
 use mpm_core::scene::{from_description, Simulation};
 use mpm_core::Solver;
 use std::path::Path;
@@ -37,26 +38,29 @@ pub fn rows(inputs: &Inputs) -> anyhow::Result<Vec<Row>> {
 
 /// The plane-strain solver of set `set` run with `options`; `scene_file` places the
 /// material path.
-fn solver(scene_file: &Path, set: &str, options: &CutOptions) -> anyhow::Result<Solver<2>> {
+fn solver(
+    scene_file: &Path,
+    set: &str,
+    end_feed: f64,
+    options: &RunOptions,
+) -> anyhow::Result<Solver<2>> {
     let set = discretization(set).expect("a set of table 12.2");
-    let spec = VerticalCut::default().scene(&set, options);
+    let spec = VerticalCut::default().scene(&set, end_feed, options);
     match from_description(&spec, scene_file)?.simulation {
         Simulation::Planar(s) => Ok(s),
         Simulation::Solid(_) => anyhow::bail!("the vertical cut is plane strain"),
     }
 }
 
-fn options(material: &Path, end_feed: f64, seed: u64) -> CutOptions {
-    CutOptions {
-        end_feed,
+fn options(material: &Path, seed: u64) -> RunOptions {
+    RunOptions {
         seed,
-        material_file: material.display().to_string(),
-        ..CutOptions::default()
+        ..RunOptions::new(material.display().to_string())
     }
 }
 
 fn time_step(scene_file: &Path, material: &Path) -> anyhow::Result<Row> {
-    let mut s = solver(scene_file, "S0", &options(material, 1.0, 1))?;
+    let mut s = solver(scene_file, "S0", 1.0, &options(material, 1))?;
     let dt = s.initialize().dt;
     let lightest = s
         .particles
@@ -83,7 +87,7 @@ fn punch_force(
     end_feed: f64,
     seed: u64,
 ) -> anyhow::Result<(Vec<f64>, Option<f64>)> {
-    let mut s = solver(scene_file, set, &options(material, end_feed, seed))?;
+    let mut s = solver(scene_file, set, end_feed, &options(material, seed))?;
     s.initialize();
     let mut force = Vec::new();
     let mut record = |s: &Solver<2>| {
