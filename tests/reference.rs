@@ -248,10 +248,11 @@ fn the_reference_lists_every_key_the_readers_accept() {
 
 #[test]
 fn a_key_the_reader_does_not_accept_is_found() {
-    let listed = accepted("x.toml:3:1: unknown field `zz_probe_key`, expected one of `a`, `b`");
+    let listed = accepted(
+        "x.toml:3:1: `zz_probe_key`: unknown field `zz_probe_key`, expected one of `a`, `b`",
+    );
     assert_eq!(listed, Some(["a".to_string(), "b".to_string()].into()));
-    let listed =
-        accepted("m.toml:2: field `elastic.zz_probe_key`: unknown key; allowed: E, nu, rho");
+    let listed = accepted("m.toml:2:1: `elastic.zz_probe_key`: unknown key; allowed: E, nu, rho");
     assert_eq!(listed, Some(["E", "nu", "rho"].map(String::from).into()));
     assert_eq!(
         table_labels("`body.shape` (type = \"disk\")"),

@@ -1,7 +1,7 @@
 //! Every kind of input file reports a mistake one way: `file:line:column: `key`: what was
 //! expected`. One mistake per kind, each where it is written: an experiment TOML, a
 //! material file, a fit set (a TOML type error, an unknown key, a semantic error in an
-//! `[[experiment]]` entry) and an SHPB scene.
+//! `[[experiment]]` entry), an MPM scene and an SHPB scene.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -137,6 +137,28 @@ fn every_input_file_names_file_line_column_and_key() {
         &entry,
         13,
         "experiment.layers",
+    );
+
+    // an MPM scene: a value a check refuses, and a key the reader does not know
+    let disks = std::fs::read_to_string(data.join("scenes/colliding_disks.toml")).unwrap();
+    let spacing = disks
+        .lines()
+        .position(|l| l.starts_with("spacing"))
+        .unwrap()
+        + 1;
+    let mpm = write("disks.toml", disks.replacen("spacing = ", "spacing = -", 1));
+    assert_placed(
+        &error_of(&["simulate", mpm.to_str().unwrap()]),
+        &mpm,
+        spacing,
+        "grid.spacing",
+    );
+    let typo = write("typo.toml", disks.replacen("spacing = ", "spaceing = ", 1));
+    assert_placed(
+        &error_of(&["simulate", typo.to_str().unwrap()]),
+        &typo,
+        spacing,
+        "grid.spaceing",
     );
 
     // an SHPB scene

@@ -1,5 +1,5 @@
 //! Field checks of a scene description: each error names the file and the field
-//! (`bodies[1].shape.radius`) and what was expected.
+//! (`bodies[1].shape.radius`) and what was expected; `scene::load` adds the line.
 
 use super::spec::BoxSpec;
 use super::SceneError;
@@ -15,6 +15,7 @@ impl Check<'_> {
     pub fn err(&self, field: impl Into<String>, problem: impl Into<String>) -> SceneError {
         SceneError::Field {
             file: self.file.into(),
+            at: None,
             field: field.into(),
             problem: problem.into(),
         }

@@ -55,11 +55,15 @@ pub enum SceneError {
         file: PathBuf,
         reason: std::io::Error,
     },
-    #[error("{file}: {message}")]
-    Syntax { file: PathBuf, message: String },
-    #[error("{file}: field `{field}`: {problem}")]
+    /// TOML syntax, an unknown key or a wrong type, placed by `::materials::toml_place`.
+    #[error("{0}")]
+    Syntax(String),
+    /// A value that does not hold, at the line of its key when the file's text is known
+    /// (`load`), else in the file.
+    #[error("{}: `{field}`: {problem}", at.as_ref().map_or_else(|| file.display().to_string(), |a| a.to_string()))]
     Field {
         file: PathBuf,
+        at: Option<::materials::toml_place::Location>,
         field: String,
         problem: String,
     },
@@ -114,7 +118,42 @@ fn describe<const D: usize>(s: &Solver<D>) -> Vec<String> {
 
 /// Read and validate a scene file.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    from_description(&read(path)?, path)
+    from_description(&read(path)?, path).map_err(|e| match e {
+        SceneError::Field {
+            file,
+            at: None,
+            field,
+            problem,
+        } => {
+            let at = std::fs::read_to_string(path)
+                .ok()
+                .map(|text| field_location(path, &text, &field));
+            SceneError::Field {
+                file,
+                at,
+                field,
+                problem,
+            }
+        }
+        other => other,
+    })
+}
+
+/// Where the field `field` of a scene's description (`bodies[1].shape.radius`,
+/// `grid.spacing`, `kinematics`) is written in `text`: the line that sets its first key
+/// inside its table (the table's header when the key is not written there).
+fn field_location(path: &Path, text: &str, field: &str) -> ::materials::toml_place::Location {
+    let mut parts = field.split('.');
+    let first = parts.next().unwrap_or_default();
+    let (table, index) = match first.split_once('[') {
+        Some((t, rest)) => (t, rest.trim_end_matches(']').parse().unwrap_or(0)),
+        None => (first, 0),
+    };
+    let span = match parts.next() {
+        Some(key) => ::materials::toml_place::find_key(text, Some((table, index)), key),
+        None => ::materials::toml_place::find_key(text, None, table),
+    };
+    ::materials::toml_place::Location::in_text(path, text, span.start)
 }
 
 /// Read a scene file's description, to change it in code before `from_description`.
@@ -123,10 +162,8 @@ pub fn read(path: &Path) -> Result<SceneFile, SceneError> {
         file: path.into(),
         reason,
     })?;
-    toml::from_str(&text).map_err(|e| SceneError::Syntax {
-        file: path.into(),
-        message: e.to_string(),
-    })
+    toml::from_str(&text)
+        .map_err(|e| SceneError::Syntax(::materials::toml_place::describe(path, &text, &e)))
 }
 
 /// Check and discretize a scene description, read from a file or made in code; `file`
