@@ -156,3 +156,34 @@ fn repeated_runs_give_the_force_spread() {
     }
     assert!(dir.join("repeat.png").is_file() && dir.join("cv.png").is_file());
 }
+
+/// A run that fails (a time step 24 times the punch penalty's limit) reports the feed it
+/// reached, the cause, and where the point was with its temperature and plastic strain.
+#[test]
+fn a_failed_cut_says_where_and_at_what_feed() {
+    let dir = std::env::temp_dir().join(format!("mpw-cut-fail-{}", std::process::id()));
+    let text = mpw_ok(&[
+        "cut",
+        "vertical",
+        "--set",
+        "G0",
+        "--feed",
+        "0.2",
+        "--dt",
+        "2e-8",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("stopped at "))
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(
+        line.contains("% relative feed: simulation failed at step"),
+        "{line}"
+    );
+    assert!(
+        line.contains(") mm, θ = ") && line.contains(", α = "),
+        "{line}"
+    );
+}

@@ -355,12 +355,38 @@ fn vertical(args: VerticalArgs) -> Result<()> {
             out.display()
         ),
         Some(e) => println!(
-            "stopped at {:.1} % relative feed: {e}\nforce.csv, force.png, sheet.png, history and snapshots up to there in {}",
+            "stopped at {:.1} % relative feed: {e}{}\nforce.csv, force.png, sheet.png, history and snapshots up to there in {}",
             100.0 * cut.feed_at(e.time),
+            where_it_failed(&out, e.particle)?,
             out.display()
         ),
     }
     Ok(())
+}
+
+/// Where the point a run failed on was, from the snapshot written at the failure, with
+/// its temperature and plastic strain: `" (at (x, y) mm, θ = …, α = …)"`, or nothing.
+fn where_it_failed(out: &Path, particle: Option<usize>) -> Result<String> {
+    let (Some(p), Some(last)) = (particle, snapshots(out)?.pop()) else {
+        return Ok(String::new());
+    };
+    let s = mpm_core::output::read_snapshot(&last)?;
+    let value = |name: &str| {
+        s.scalar(name)
+            .and_then(|v| v.get(p))
+            .copied()
+            .unwrap_or(f64::NAN)
+    };
+    Ok(match s.position.get(p) {
+        Some(x) => format!(
+            " (at ({:.3}, {:.3}) mm, θ = {:.0} K, α = {:.2})",
+            x[0] * 1e3,
+            x[1] * 1e3,
+            value("theta"),
+            value("alpha")
+        ),
+        None => String::new(),
+    })
 }
 
 /// Filter of the cutting forces (thesis §12.3): 31 samples, first order.
