@@ -20,7 +20,11 @@ use std::path::Path;
 
 pub fn rows(inputs: &Inputs) -> anyhow::Result<Vec<Row>> {
     let scene_file = inputs.data.scenes().join("cutting/vertical_G0.toml");
+    // absolute: the scene resolves a relative material path from its own folder
     let material = inputs.data.materials().join("al7075_t6.toml");
+    let material = material
+        .canonicalize()
+        .map_err(|e| anyhow::anyhow!("{}: {e}", material.display()))?;
     let mut out = vec![time_step(&scene_file, &material)?];
     out.extend(seeds(&scene_file, &material)?);
     if inputs.full {
