@@ -41,20 +41,15 @@ fn floor_char_boundary(text: &str, offset: usize) -> usize {
 }
 
 /// The table a line belongs to: the name of the last `[name]` or `[[name]]` header at or
-/// before byte `offset`, and how many headers of that name came before it (0-based).
-fn table_at(text: &str, offset: usize) -> Option<(String, usize)> {
-    let mut found: Option<(String, usize)> = None;
-    let mut seen: Vec<String> = Vec::new();
+/// before byte `offset`.
+fn table_at(text: &str, offset: usize) -> Option<String> {
     let mut start = 0;
+    let mut found = None;
     for line in text.split_inclusive('\n') {
         if start > offset {
             break;
         }
-        if let Some(name) = header_name(line) {
-            let index = seen.iter().filter(|n| **n == name).count();
-            seen.push(name.clone());
-            found = Some((name, index));
-        }
+        found = header_name(line).or(found);
         start += line.len();
     }
     found
@@ -82,7 +77,7 @@ pub fn key_at(text: &str, offset: usize) -> Option<String> {
         return None;
     }
     Some(match table_at(text, line_start) {
-        Some((table, _)) => format!("{table}.{key}"),
+        Some(table) => format!("{table}.{key}"),
         None => key.to_string(),
     })
 }

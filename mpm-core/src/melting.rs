@@ -4,11 +4,11 @@
 //! without quite reaching it; a point counts as molten from θ* ≥ `MOLTEN` (its flow stress
 //! below about 1 % of the cold value for M ≈ 1). Such a point carries almost no stress, so
 //! the run goes on but its numbers near that point no longer describe a solid. This is
-//! almost never the physics of the test; it
-//! is too much plastic work in too few points (a contact or wall layer, a free-surface
-//! point that has gone unstable) or a material file whose θm or Taylor-Quinney fraction
-//! is wrong. The watch checks every observed state and keeps, per body, when a point first
-//! reached θm, how many points are at or above it now and at most, and the hottest point.
+//! almost never the physics of the test; it is too much plastic work in too few points (a
+//! contact or wall layer, a free-surface point that has gone unstable) or a material file
+//! whose θm or Taylor-Quinney fraction is wrong. The watch checks every observed state
+//! (one pass over the points' temperatures) and keeps, per body, when a point first became
+//! molten, how many are molten now and at most, and the hottest point.
 
 use crate::solver::observer::{Observer, Verdict, CONTINUE};
 use crate::solver::Solver;

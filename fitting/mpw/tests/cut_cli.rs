@@ -82,12 +82,13 @@ fn a_short_vertical_cut_loads_the_punch() {
     assert_eq!(rows[0][3], 0.0);
     let last = rows.last().unwrap();
     assert!(last[0] > 0.039, "{last:?}");
-    // the punch presses down on a sheet whose shear resistance is about
-    // τ_y l_y = (546 MPa/√3)(3 mm) ≈ 0.95 MN/m: the mean force over the last half of the
-    // run is of that order (impact transients included), not zero and not 100 times more
+    // 2-4 % feed is the first contact's impact: the mean force over it lies between the
+    // sheet's quasi-static shear resistance τ_y l_y = (546 MPa/√3)(3 mm) = 0.95 MN/m and the
+    // elastic impact force ρ c v w = 2800 · 6172 · 150 · 2.85 mm = 7.4 MN/m on the punch
+    // face (measured 4.48 MN/m)
     let half = &rows[rows.len() / 2..];
     let mean = half.iter().map(|r| r[3]).sum::<f64>() / half.len() as f64;
-    assert!(mean > 0.1e6 && mean < 20e6, "mean f_y {mean:.3e} N/m");
+    assert!(mean > 0.95e6 && mean < 7.4e6, "mean f_y {mean:.3e} N/m");
     assert!(dir.join("force.png").is_file() && dir.join("scene.toml").is_file());
 }
 
