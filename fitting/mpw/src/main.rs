@@ -37,6 +37,12 @@ enum Command {
     /// punch force against relative feed and the feed reached.
     #[command(subcommand)]
     Cut(mpw::cli::cut::Cut),
+    /// A study over one or two fields of a scene and over seeds, through an executor
+    /// (in process, a local process pool or Slurm); one CSV of results.
+    Sweep(mpw::cli::sweep::Args),
+    /// Run one task (a run description) into its folder: outcome and manifest. The
+    /// executors start it.
+    RunOne(mpw::cli::run_one::Args),
     /// Measure MPM throughput (particle-steps/s with 1 and 2 threads) and bytes per particle.
     BenchMpm(mpw::cli::bench_mpm::Args),
     /// Every shape function on the truss and the Taylor bar: error against wall time.
@@ -63,7 +69,11 @@ fn main() {
     if let Err(e) = result {
         let message = format!("{e:#}");
         eprintln!("error: {message}");
-        if message.contains("data/") && !std::path::Path::new("data").is_dir() {
+        // a default path (`data/...`, relative) that the current folder does not have
+        let default_path = message
+            .split(|c: char| c.is_whitespace() || "`'\"(".contains(c))
+            .any(|word| word.starts_with("data/"));
+        if default_path && !std::path::Path::new("data").is_dir() {
             eprintln!(
                 "hint: the default files (data/...) are found from the current folder, which has no data/ folder: \
 run mpw from the repository root, or name the files (mpw fit SET.toml, mpw verify --data DIR, mpw drive --material FILE)"
@@ -106,6 +116,8 @@ fn dispatch(command: Command) -> anyhow::Result<()> {
         Command::Synth(a) => mpw::cli::synth::run(a),
         Command::Simulate(a) => mpw::cli::simulate::run(a),
         Command::Cut(c) => mpw::cli::cut::run(c),
+        Command::Sweep(a) => mpw::cli::sweep::run(a),
+        Command::RunOne(a) => mpw::cli::run_one::run(a),
         Command::BenchMpm(a) => mpw::cli::bench_mpm::run(a),
         Command::Kernels(a) => mpw::cli::kernels::run(a),
         Command::Completions { shell } => {

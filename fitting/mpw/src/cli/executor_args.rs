@@ -1,0 +1,71 @@
+//! The executor options every command with many runs shares (`mpw sweep`): where the runs
+//! go (`--executor`), and the Slurm config file or the pool's size.
+
+use anyhow::{bail, Context, Result};
+use runs::{Execute, Executor, InProcess, ProcessPool, Slurm, SlurmConfig};
+use std::path::PathBuf;
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq)]
+pub enum Kind {
+    /// One run after another in this process, on its threads.
+    InProcess,
+    /// `mpw run-one` subprocesses, as many at a time as the CPUs allow.
+    Pool,
+    /// A Slurm job array per round (needs --slurm CONFIG).
+    Slurm,
+}
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct ExecutorArgs {
+    /// Where the runs go.
+    #[arg(long, value_enum, default_value = "in-process")]
+    pub executor: Kind,
+    /// The Slurm config (TOML: work_dir, partition, time_limit, cpus_per_task, ...).
+    #[arg(long)]
+    pub slurm: Option<PathBuf>,
+    /// Pool: threads of each run (the pool runs CPUs / this many at a time).
+    #[arg(long, default_value_t = 1)]
+    pub threads_per_run: usize,
+    /// Pool: starts again of a run stopped from outside (Slurm: the config's `retries`).
+    #[arg(long, default_value_t = 1)]
+    pub retries: usize,
+}
+
+impl ExecutorArgs {
+    /// The executor, running `execute` when in process; `batch_dir` is where the task
+    /// folders go unless Slurm's config names its shared work folder (then `job_name`
+    /// under it).
+    pub fn build<'a>(
+        &self,
+        job_name: &str,
+        execute: Execute<'a>,
+        batch_dir: PathBuf,
+    ) -> Result<(Box<dyn Executor + 'a>, PathBuf)> {
+        if self.slurm.is_some() && self.executor != Kind::Slurm {
+            bail!("--slurm is the config of --executor slurm");
+        }
+        let this = std::env::current_exe().context("cannot find this program's path")?;
+        Ok(match self.executor {
+            Kind::InProcess => (
+                Box::new(InProcess {
+                    program: super::run_one::program(),
+                    execute,
+                }),
+                batch_dir,
+            ),
+            Kind::Pool => {
+                let cpus = mpm_core::parallel::cpus();
+                let pool = ProcessPool::new(this, cpus, self.threads_per_run, self.retries);
+                (Box::new(pool), batch_dir)
+            }
+            Kind::Slurm => {
+                let Some(path) = &self.slurm else {
+                    bail!("--executor slurm needs --slurm CONFIG (a TOML file: work_dir, time_limit, max_running, ...)");
+                };
+                let config = SlurmConfig::read(path)?;
+                let dir = config.work_dir.join(job_name);
+                (Box::new(Slurm::new(config, this, job_name)), dir)
+            }
+        })
+    }
+}

@@ -1,0 +1,96 @@
+//! What a run description (`runs::RunDescription`) means to mpw: the table of run kinds
+//! that `mpw run-one` and the in-process executor execute.
+//!
+//! - `scene`: an MPM scene file (`mpw simulate`'s) with the description's changes set by
+//!   field path and its seed as `grid.seed` (the grid-shift sequence); the outcome is the
+//!   scene's named results (`mpm_core::results`) and `run.steps`, `run.dt`,
+//!   `run.particles`; a simulation that stops early is an outcome with its failure.
+
+use anyhow::{bail, Context, Result};
+use runs::{Outcome, RunDescription};
+use std::ops::ControlFlow;
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// The run kinds, for messages.
+pub const KINDS: [&str; 1] = ["scene"];
+
+/// Run `description` into `dir`; `stop`, when given, stops a simulation at its next step
+/// (the task then fails as interrupted).
+pub fn execute(
+    description: &RunDescription,
+    dir: &Path,
+    stop: Option<&AtomicBool>,
+) -> Result<Outcome> {
+    match description.kind.as_str() {
+        "scene" => scene(description, dir, stop),
+        other => bail!("run kind `{other}` is not one of {}", KINDS.join(", ")),
+    }
+}
+
+/// The scene file of `description` with its changes and seed, as TOML.
+pub fn changed_scene(description: &RunDescription) -> Result<toml::Value> {
+    let path = &description.input;
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read the scene {}", path.display()))?;
+    let mut scene: toml::Value = toml::from_str(&text)
+        .map_err(|e| anyhow::anyhow!("{}: {}", path.display(), e.message()))?;
+    for (field, value) in &description.set {
+        runs::changes::set(&mut scene, field, value.clone())
+            .with_context(|| format!("changing {}", path.display()))?;
+    }
+    if let Some(seed) = description.seed {
+        let seed = i64::try_from(seed).context("the seed must be below 2^63")?;
+        runs::changes::set(&mut scene, "grid.seed", toml::Value::Integer(seed))
+            .with_context(|| format!("seeding {}", path.display()))?;
+    }
+    Ok(scene)
+}
+
+fn scene(description: &RunDescription, dir: &Path, stop: Option<&AtomicBool>) -> Result<Outcome> {
+    let path = &description.input;
+    if fitting::shpb_model::scene::is_shpb_scene(path) {
+        bail!(
+            "{} is an SHPB scene; the run kind `scene` takes MPM scenes",
+            path.display()
+        );
+    }
+    let spec: mpm_core::scene::SceneFile =
+        changed_scene(description)?
+            .try_into()
+            .map_err(|e: toml::de::Error| {
+                anyhow::anyhow!(
+                    "{} with the description's changes: {}",
+                    path.display(),
+                    e.message()
+                )
+            })?;
+    let scene = mpm_core::scene::from_description(&spec, path)?;
+    let mut warnings = Vec::new();
+    let summary = mpm_core::run::run_scene(
+        scene,
+        dir,
+        |ts| warnings.extend(ts.risk().map(|r| r.to_string())),
+        |_, _| match stop.is_some_and(|s| s.load(Ordering::Relaxed)) {
+            true => ControlFlow::Break(()),
+            false => ControlFlow::Continue(()),
+        },
+    )
+    .with_context(|| format!("writing the run's output to {}", dir.display()))?;
+    if stop.is_some_and(|s| s.load(Ordering::Relaxed)) {
+        bail!("interrupted at step {}", summary.steps);
+    }
+    warnings.extend(summary.melting.iter().map(|m| m.to_string()));
+    let mut outcome = Outcome {
+        failure: summary.failure.as_ref().map(|f| f.to_string()),
+        warnings,
+        values: Vec::new(),
+    };
+    for r in &summary.results {
+        outcome.push(&r.name, r.value, r.unit);
+    }
+    outcome.push("run.steps", summary.steps as f64, "-");
+    outcome.push("run.dt", summary.time_step.dt, "s");
+    outcome.push("run.particles", summary.particles as f64, "-");
+    Ok(outcome)
+}

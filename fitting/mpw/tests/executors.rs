@@ -1,0 +1,291 @@
+//! The three executors on real runs: a sweep of eight short runs gives the same CSV, byte
+//! for byte, in this process, in the local process pool and through Slurm; a task made to
+//! fail is reported with its log; a task killed from outside is started again; a stopped
+//! sweep leaves no task running, in the pool or in the Slurm queue.
+//!
+//! The Slurm tests need a Slurm controller that answers (`SLURM_CONF` naming its config):
+//! `.ci/test` installs and starts a single-node one. Without it they fail with the reason.
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .canonicalize()
+        .unwrap()
+}
+
+fn scene() -> String {
+    root()
+        .join("data/scenes/colliding_disks.toml")
+        .display()
+        .to_string()
+}
+
+fn temp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("mpw-executors-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The Slurm config of a test: its work folder under `dir`, one CPU per task.
+fn slurm_config(dir: &Path) -> PathBuf {
+    let answer = Command::new("sinfo").args(["-h", "-o", "%T"]).output();
+    let reason = match &answer {
+        Err(e) => format!("sinfo does not run ({e})"),
+        Ok(o) if !o.status.success() => String::from_utf8_lossy(&o.stderr).trim().to_string(),
+        Ok(o) if String::from_utf8_lossy(&o.stdout).trim().is_empty() => "no node".into(),
+        Ok(_) => String::new(),
+    };
+    assert!(
+        reason.is_empty(),
+        "no Slurm controller answers (SLURM_CONF = {:?}): {reason}. `.ci/test` installs and starts a single-node Slurm (Debian packages slurm-wlm and munge; needs root)",
+        std::env::var("SLURM_CONF").ok()
+    );
+    let path = dir.join("slurm.toml");
+    std::fs::write(
+        &path,
+        "work_dir = \"slurm-work\"\ntime_limit = \"00:10:00\"\ncpus_per_task = 1\nmax_running = 2\npoll_seconds = 0.2\n",
+    )
+    .unwrap();
+    path
+}
+
+fn sweep_command(out: &Path, executor: &str, config: Option<&Path>, extra: &[&str]) -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_mpw"));
+    c.args(["sweep", &scene(), "--executor", executor, "--out"])
+        .arg(out)
+        .args(extra);
+    if let Some(config) = config {
+        c.arg("--slurm").arg(config);
+    }
+    c
+}
+
+fn sweep(out: &Path, executor: &str, config: Option<&Path>, extra: &[&str]) -> Output {
+    sweep_command(out, executor, config, extra)
+        .output()
+        .unwrap()
+}
+
+/// Eight runs: two time-step safeties on four grids.
+const EIGHT: [&str; 6] = [
+    "--vary",
+    "grid.spacing=0.05,0.04,0.025,0.02",
+    "--vary",
+    "time.safety=0.2,0.4",
+    "--returns",
+    "lower.x_max,upper.kinetic_energy,A.x,B.y,run.steps,run.dt",
+];
+
+#[test]
+fn every_executor_gives_the_same_results_bit_for_bit() {
+    let dir = temp("same");
+    let config = slurm_config(&dir);
+    let mut tables = Vec::new();
+    for executor in ["in-process", "pool", "slurm"] {
+        let out = dir.join(executor);
+        let config = (executor == "slurm").then_some(config.as_path());
+        let o = sweep(&out, executor, config, &EIGHT);
+        assert!(
+            o.status.success(),
+            "{executor}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        tables.push(std::fs::read_to_string(out.join("results.csv")).unwrap());
+    }
+    assert_eq!(tables[0].lines().count(), 9, "{}", tables[0]);
+    assert!(
+        tables[0].lines().skip(1).all(|l| l.contains(",ok,")),
+        "{}",
+        tables[0]
+    );
+    assert_eq!(tables[0], tables[1], "in-process and pool differ");
+    assert_eq!(tables[0], tables[2], "in-process and Slurm differ");
+    // a Slurm task ran on the one CPU it was given, and names its description
+    let task = dir.join("slurm-work/mpw-sweep-colliding_disks/task-3");
+    let manifest: toml::Table =
+        toml::from_str(&std::fs::read_to_string(task.join("manifest.toml")).unwrap()).unwrap();
+    assert_eq!(manifest["threads"].as_integer(), Some(1));
+    assert_eq!(manifest["status"].as_str(), Some("ok"));
+    let pool_manifest: toml::Table = toml::from_str(
+        &std::fs::read_to_string(dir.join("pool/tasks/task-3/manifest.toml")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(
+        manifest["description_hash"],
+        pool_manifest["description_hash"]
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A negative end time is refused by the run, not by the sweep: the task fails, its row
+/// says so, the failure is printed with its log, and the sweep exits non-zero.
+#[test]
+fn a_failed_task_is_reported_with_its_log() {
+    let dir = temp("fail");
+    let config = slurm_config(&dir);
+    for executor in ["pool", "slurm"] {
+        let out = dir.join(executor);
+        let config = (executor == "slurm").then_some(config.as_path());
+        let o = sweep(
+            &out,
+            executor,
+            config,
+            &["--vary", "time.end=3.5,-1", "--returns", "A.x"],
+        );
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            !o.status.success(),
+            "{executor}: a failed task must fail the sweep"
+        );
+        assert!(
+            stderr.contains("task 1 failed")
+                && stderr.contains("`time.end`: must be a positive number, got -1"),
+            "{executor}: {stderr}"
+        );
+        let log = stderr
+            .split("(log: ")
+            .nth(1)
+            .and_then(|s| s.split(')').next())
+            .unwrap_or_else(|| panic!("{executor}: no log named in {stderr}"));
+        let text = std::fs::read_to_string(log).unwrap();
+        assert!(
+            text.contains("must be a positive number"),
+            "{executor}: {log}: {text}"
+        );
+        let table = std::fs::read_to_string(out.join("results.csv")).unwrap();
+        let rows: Vec<&str> = table.lines().collect();
+        assert!(
+            rows[1].starts_with("0,3.5,ok,") && rows[2].starts_with("1,-1,failed,"),
+            "{table}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Processes whose command line holds `text`.
+fn processes_with(text: &str) -> Vec<String> {
+    std::fs::read_dir("/proc")
+        .unwrap()
+        .filter_map(|e| std::fs::read(e.ok()?.path().join("cmdline")).ok())
+        .map(|c| String::from_utf8_lossy(&c).replace('\0', " "))
+        .filter(|c| c.contains(text))
+        .collect()
+}
+
+fn wait_for(what: &str, limit: Duration, mut condition: impl FnMut() -> bool) {
+    let start = Instant::now();
+    while !condition() {
+        assert!(start.elapsed() < limit, "waited {limit:?} for {what}");
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}
+
+fn interrupt(child: &Child) {
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+}
+
+/// Four runs of tens of seconds each, stopped once two are under way.
+const LONG: [&str; 4] = [
+    "--vary",
+    "grid.spacing=0.004",
+    "--vary",
+    "time.safety=0.2,0.21,0.22,0.23",
+];
+
+#[test]
+fn a_stopped_sweep_leaves_no_task_running() {
+    let dir = temp("cancel");
+    let config = slurm_config(&dir);
+    for executor in ["pool", "slurm"] {
+        let out = dir.join(executor);
+        let config = (executor == "slurm").then_some(config.as_path());
+        let batch = match executor {
+            "slurm" => dir.join("slurm-work/mpw-sweep-colliding_disks"),
+            _ => out.join("tasks"),
+        };
+        let batch = batch.display().to_string();
+        let mut child = sweep_command(&out, executor, config, &LONG)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        wait_for("two tasks under way", Duration::from_secs(120), || {
+            processes_with(&format!("run-one {batch}/task-")).len() >= 2
+        });
+        interrupt(&child);
+        let status = child.wait().unwrap();
+        let mut stderr = String::new();
+        std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
+        assert!(
+            !status.success() && stderr.contains("cancelled"),
+            "{executor}: {stderr}"
+        );
+        let left = processes_with(&format!("run-one {batch}/task-"));
+        assert!(
+            left.is_empty(),
+            "{executor}: still running after the stop: {left:?}"
+        );
+        if executor == "slurm" {
+            // the queue's jobs by their scripts, which are in the batch folder
+            let queue = Command::new("squeue")
+                .args(["-h", "-o", "%i %o"])
+                .output()
+                .unwrap();
+            let queue = String::from_utf8_lossy(&queue.stdout);
+            let ours: Vec<&str> = queue.lines().filter(|l| l.contains(&batch)).collect();
+            assert!(ours.is_empty(), "still in the queue: {ours:?}");
+        }
+        assert!(!Path::new(&batch).join("task-0/manifest.toml").exists());
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A run killed from outside (as by the out-of-memory killer) leaves no manifest; the pool
+/// starts it again and the sweep ends with every result.
+#[test]
+fn a_task_killed_from_outside_is_started_again() {
+    let dir = temp("retry");
+    let out = dir.join("pool");
+    let batch = out.join("tasks").display().to_string();
+    let mut child = sweep_command(
+        &out,
+        "pool",
+        None,
+        &["--vary", "grid.spacing=0.01", "--returns", "A.x"],
+    )
+    .stdout(Stdio::null())
+    .stderr(Stdio::piped())
+    .spawn()
+    .unwrap();
+    let mut victim = Vec::new();
+    wait_for("the task to start", Duration::from_secs(60), || {
+        victim = processes_with(&format!("run-one {batch}/task-0"));
+        !victim.is_empty()
+    });
+    let killed = Command::new("pkill")
+        .args(["-KILL", "-f", &format!("run-one {batch}/task-0/")])
+        .status()
+        .unwrap();
+    assert!(killed.success(), "pkill found nothing: {victim:?}");
+    let status = child.wait().unwrap();
+    let mut stderr = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
+    assert!(status.success(), "{stderr}");
+    let task = Path::new(&batch).join("task-0");
+    assert!(task.join("log-1.txt").exists() && task.join("log-2.txt").exists());
+    let table = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    assert!(
+        table.lines().nth(1).unwrap().starts_with("0,0.01,ok,"),
+        "{table}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,0 +1,55 @@
+//! The in-process executor: one task after another on this process's threads (or on a
+//! pool of the task's own `threads` when it asks for fewer). Nothing is started anew, so a
+//! task stopped from outside stops the whole process: there is nothing to retry.
+
+use super::{in_rounds, Executor, Progress};
+use crate::batch::{Batch, TaskReport};
+use crate::description::RunDescription;
+use crate::manifest::Program;
+use crate::task::{run_one, Execute};
+use anyhow::Result;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+pub struct InProcess<'a> {
+    pub program: Program<'a>,
+    pub execute: Execute<'a>,
+}
+
+impl Executor for InProcess<'_> {
+    fn describe(&self) -> String {
+        format!("in this process, {} threads", rayon::current_num_threads())
+    }
+
+    fn run(&self, batch: &Batch, stop: &AtomicBool, progress: Progress) -> Result<Vec<TaskReport>> {
+        in_rounds(batch, 0, stop, |tasks, _| {
+            for (done, &i) in tasks.iter().enumerate() {
+                if stop.load(Ordering::Relaxed) {
+                    break;
+                }
+                progress(done, batch.len);
+                let task = batch.task(i);
+                let asked = RunDescription::read(&task.description()).map_or(0, |d| d.threads);
+                let available = rayon::current_num_threads();
+                let run = |threads| {
+                    // a task error is in its manifest, which the report reads
+                    let _ = run_one(
+                        self.program,
+                        &task.description(),
+                        &task.0,
+                        threads,
+                        self.execute,
+                    );
+                };
+                match asked {
+                    t if t > 0 && t < available => rayon::ThreadPoolBuilder::new()
+                        .num_threads(t)
+                        .build()?
+                        .install(|| run(t)),
+                    _ => run(available),
+                }
+            }
+            progress(tasks.len(), batch.len);
+            Ok(())
+        })
+    }
+}
