@@ -1,5 +1,6 @@
 //! The layout the README shows is the repository's, and dependencies point one way
-//! (DESIGN 2): `materials` <- `mpm-core` <- `fitting`, `cutting` <- `mpw`; no library depends on a
+//! (DESIGN 2): `materials` <- `mpm-core` <- `fitting`, `cutting` <- `mpw`, and `runs` (the
+//! executors, which know no mechanics) <- `mpw`; no library depends on a
 //! command-line, chart or terminal crate; within each crate, the top-level modules import
 //! each other without circles.
 
@@ -75,6 +76,10 @@ fn dependencies_point_from_the_program_to_the_libraries() {
         ("mpm-core", vec!["fitting", "cutting", "mpw"]),
         ("fitting", vec!["cutting", "mpw"]),
         ("cutting", vec!["fitting", "mpw"]),
+        (
+            "runs",
+            vec!["materials", "mpm-core", "fitting", "cutting", "mpw"],
+        ),
     ];
     for (library, not_on) in above {
         let deps = dependencies(library);
@@ -83,7 +88,14 @@ fn dependencies_point_from_the_program_to_the_libraries() {
         }
     }
     let program = dependencies("fitting/mpw");
-    for library in ["materials", "mpm-core", "fitting", "cutting", "clap"] {
+    for library in [
+        "materials",
+        "mpm-core",
+        "fitting",
+        "cutting",
+        "runs",
+        "clap",
+    ] {
         assert!(
             program.contains(library),
             "mpw does not depend on {library}"
@@ -188,6 +200,7 @@ fn the_modules_of_each_crate_import_each_other_without_circles() {
         "mpm-core/src",
         "fitting/src",
         "cutting/src",
+        "runs/src",
         "fitting/mpw/src",
     ] {
         let graph = module_graph(&repo_root().join(src));

@@ -121,6 +121,7 @@ fn population(seed: u64) -> FitSet {
         ftol: fitting::fit::optimize::lm::LmOptions::default().ftol,
         seed,
         truth: BTreeMap::new(),
+        evaluations: std::sync::Arc::new(fitting::fit::evaluations::InProcess),
     }
 }
 

@@ -36,5 +36,5 @@ pub use batch::{Batch, TaskFailure, TaskReport};
 pub use description::RunDescription;
 pub use executor::{Executor, InProcess, ProcessPool, Slurm, SlurmConfig};
 pub use manifest::{Manifest, Program, Status};
-pub use outcome::{Outcome, OutcomeValue};
+pub use outcome::{Outcome, OutcomeSeries, OutcomeValue};
 pub use task::Execute;

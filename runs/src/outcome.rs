@@ -1,5 +1,5 @@
 //! What a run returns: its named results (name, value, unit), in the order the run gave
-//! them, the failure that stopped its simulation if one did (a physical result of the
+//! them, named series of values (a predicted curve), the failure that stopped its simulation if one did (a physical result of the
 //! run, not an error of the task: a stability map counts them), and its warnings.
 //!
 //! Values are written as TOML floats in Rust's shortest round-trip form (NaN and ±inf
@@ -17,6 +17,15 @@ pub struct OutcomeValue {
     pub unit: String,
 }
 
+/// A named series of values, e.g. a model's prediction at an experiment's samples.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutcomeSeries {
+    pub name: String,
+    pub unit: String,
+    pub values: Vec<f64>,
+}
+
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Outcome {
@@ -27,6 +36,8 @@ pub struct Outcome {
     pub warnings: Vec<String>,
     #[serde(default)]
     pub values: Vec<OutcomeValue>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub series: Vec<OutcomeSeries>,
 }
 
 impl Outcome {
@@ -41,6 +52,14 @@ impl Outcome {
     /// The value named `name`.
     pub fn value(&self, name: &str) -> Option<f64> {
         self.values.iter().find(|v| v.name == name).map(|v| v.value)
+    }
+
+    /// The series named `name`.
+    pub fn series(&self, name: &str) -> Option<&[f64]> {
+        self.series
+            .iter()
+            .find(|s| s.name == name)
+            .map(|s| &s.values[..])
     }
 
     /// Keep only the values named in `returns` (all when it is empty), in its order; a name
@@ -102,6 +121,11 @@ mod tests {
             o.push(&format!("v{i}"), *v, "m");
         }
         o.failure = Some("step 3: inverted J".into());
+        o.series.push(OutcomeSeries {
+            name: "prediction".into(),
+            unit: "N".into(),
+            values: values.to_vec(),
+        });
         let path = std::env::temp_dir().join(format!("runs-outcome-{}.toml", std::process::id()));
         o.write(&path).unwrap();
         let back = Outcome::read(&path).unwrap();
@@ -109,6 +133,10 @@ mod tests {
             assert_eq!(a.value.to_bits(), b.value.to_bits(), "{}", a.name);
         }
         assert_eq!(back.failure, o.failure);
+        let series = back.series("prediction").unwrap();
+        for (a, b) in values.iter().zip(series) {
+            assert_eq!(a.to_bits(), b.to_bits());
+        }
         std::fs::remove_file(&path).unwrap();
     }
 

@@ -45,6 +45,9 @@ enum Command {
     RunOne(mpw::cli::run_one::Args),
     /// Measure MPM throughput (particle-steps/s with 1 and 2 threads) and bytes per particle.
     BenchMpm(mpw::cli::bench_mpm::Args),
+    /// What an executor costs: overhead per one-second run in process, in the local pool
+    /// and through Slurm, and the pool's speed-up on a 16-run sweep.
+    BenchRuns(mpw::cli::bench_runs::Args),
     /// Every shape function on the truss and the Taylor bar: error against wall time.
     Kernels(mpw::cli::kernels::Args),
     /// Print the shell completions of mpw (source them, or save them where the shell looks).
@@ -119,6 +122,7 @@ fn dispatch(command: Command) -> anyhow::Result<()> {
         Command::Sweep(a) => mpw::cli::sweep::run(a),
         Command::RunOne(a) => mpw::cli::run_one::run(a),
         Command::BenchMpm(a) => mpw::cli::bench_mpm::run(a),
+        Command::BenchRuns(a) => mpw::cli::bench_runs::run(a),
         Command::Kernels(a) => mpw::cli::kernels::run(a),
         Command::Completions { shell } => {
             let mut cli = <Cli as clap::CommandFactory>::command();

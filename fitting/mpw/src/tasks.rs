@@ -4,7 +4,9 @@
 //! - `scene`: an MPM scene file (`mpw simulate`'s) with the description's changes set by
 //!   field path and its seed as `grid.seed` (the grid-shift sequence); the outcome is the
 //!   scene's named results (`mpm_core::results`) and `run.steps`, `run.dt`,
-//!   `run.particles`; a simulation that stops early is an outcome with its failure.
+//!   `run.particles`; a simulation that stops early is an outcome with its failure;
+//! - `prediction`: one experiment of a fit set predicted at one material
+//!   (`fitting::fit::evaluations::task`), the runs of `mpw fit --executor`.
 
 use anyhow::{bail, Context, Result};
 use runs::{Outcome, RunDescription};
@@ -13,7 +15,7 @@ use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The run kinds, for messages.
-pub const KINDS: [&str; 1] = ["scene"];
+pub const KINDS: [&str; 2] = ["scene", fitting::fit::evaluations::task::KIND];
 
 /// Run `description` into `dir`; `stop`, when given, stops a simulation at its next step
 /// (the task then fails as interrupted).
@@ -24,6 +26,9 @@ pub fn execute(
 ) -> Result<Outcome> {
     match description.kind.as_str() {
         "scene" => scene(description, dir, stop),
+        fitting::fit::evaluations::task::KIND => {
+            fitting::fit::evaluations::task::execute_prediction(description, dir)
+        }
         other => bail!("run kind `{other}` is not one of {}", KINDS.join(", ")),
     }
 }
@@ -84,7 +89,7 @@ fn scene(description: &RunDescription, dir: &Path, stop: Option<&AtomicBool>) ->
     let mut outcome = Outcome {
         failure: summary.failure.as_ref().map(|f| f.to_string()),
         warnings,
-        values: Vec::new(),
+        ..Outcome::default()
     };
     for r in &summary.results {
         outcome.push(&r.name, r.value, r.unit);

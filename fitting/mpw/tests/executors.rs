@@ -1,7 +1,8 @@
 //! The three executors on real runs: a sweep of eight short runs gives the same CSV, byte
-//! for byte, in this process, in the local process pool and through Slurm; a task made to
-//! fail is reported with its log; a task killed from outside is started again; a stopped
-//! sweep leaves no task running, in the pool or in the Slurm queue.
+//! for byte, in this process, in the local process pool and through Slurm; an MPM-level
+//! fit gives the same report in this process and with its runs in the pool; a task made
+//! to fail is reported with its log; a task killed from outside is started again; a
+//! stopped sweep leaves no task running, in the pool or in the Slurm queue.
 //!
 //! The Slurm tests need a Slurm controller that answers (`SLURM_CONF` naming its config):
 //! `.ci/test` installs and starts a single-node one. Without it they fail with the reason.
@@ -287,5 +288,64 @@ fn a_task_killed_from_outside_is_started_again() {
         table.lines().nth(1).unwrap().starts_with("0,0.01,ok,"),
         "{table}"
     );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A small MPM-level fit (A and B of 42CrMo4 on the two synthetic SHPB records, 4 layers):
+/// every run of its passes and Jacobians in the pool gives the report of the fit in this
+/// process, every digit of it but the wall times.
+#[test]
+fn an_mpm_level_fit_through_the_pool_gives_the_same_report() {
+    let dir = temp("fit");
+    let data = root().join("data");
+    let experiment = |name: &str| {
+        format!(
+            "[[experiment]]\nfile = \"{}\"\nwindow = [1.5e-5, 1.15e-4]\nforces = \"f2\"\nlevel = \"mpm-axisymmetric\"\nlayers = 4\nmax_samples = 60\n",
+            data.join("experiments").join(name).display()
+        )
+    };
+    let set = format!(
+        "name = \"mpm through an executor\"\nmaterial = \"{}\"\noptimizer = \"lm\"\nstarts = 1\nftol = 1e-3\n\
+         [[parameter]]\nname = \"A\"\nlower = 100e6\nupper = 2000e6\nstart = 700e6\n\
+         [[parameter]]\nname = \"B\"\nlower = 10e6\nupper = 4000e6\nstart = 500e6\n{}{}",
+        data.join("materials/42crmo4_qt660.toml").display(),
+        experiment("shpb_293K.toml"),
+        experiment("shpb_573K.toml"),
+    );
+    std::fs::write(dir.join("set.toml"), set).unwrap();
+    let mut reports = Vec::new();
+    for executor in ["in-process", "pool"] {
+        let out = dir.join(executor);
+        let o = Command::new(env!("CARGO_BIN_EXE_mpw"))
+            .args([
+                "fit",
+                dir.join("set.toml").to_str().unwrap(),
+                "--executor",
+                executor,
+                "--out",
+            ])
+            .arg(&out)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{executor}: {stderr}");
+        if executor == "pool" {
+            assert!(stderr.contains("MPM-level runs: 2 processes"), "{stderr}");
+        }
+        let report = std::fs::read_to_string(out.join("report.toml")).unwrap();
+        let without_times: Vec<String> = report
+            .lines()
+            .filter(|l| !l.contains("wall"))
+            .map(str::to_string)
+            .collect();
+        reports.push(without_times);
+    }
+    assert!(
+        reports[0]
+            .iter()
+            .any(|l| l.starts_with("final_parameters = [")),
+        "{reports:?}"
+    );
+    assert_eq!(reports[0], reports[1]);
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -3,6 +3,7 @@
 //! optimizers and staged, multi-start fits (`optimize`); statistics (`statistics`);
 //! reports (`reports`); synthetic data (`synthetic`).
 
+pub mod evaluations;
 pub mod levels;
 pub mod objective;
 pub mod optimize;

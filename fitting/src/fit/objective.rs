@@ -7,7 +7,8 @@
 //! enter through the unbounded coordinates u of `ParamSpace`; the Jacobian dr/du is
 //! dr/dp · diag(dp/du). Experiments are evaluated in parallel.
 
-use crate::fit::levels::model::{finite_difference, with_values, ExperimentModel, Material};
+use crate::fit::evaluations::{Evaluations, Prediction, Request, IN_PROCESS};
+use crate::fit::levels::model::{fd_matrix, fd_points, with_values, ExperimentModel, Material};
 use crate::fit::params::ParamSpace;
 use anyhow::{bail, Context, Result};
 use nalgebra::DMatrix;
@@ -151,32 +152,29 @@ impl Block {
     }
 }
 
-/// Predictions of every experiment of `blocks` with `material`, in parallel.
-pub fn predict(blocks: &[&Block], material: &Material) -> Result<Vec<Vec<f64>>> {
-    blocks
-        .par_iter()
-        .map(|b| {
-            b.model
-                .predict(material)
-                .with_context(|| format!("experiment `{}`", b.name))
-        })
-        .collect()
+/// Predictions of every experiment of `blocks` with `material`, through `evaluations`.
+pub fn predict(
+    evaluations: &dyn Evaluations,
+    blocks: &[&Block],
+    material: &Material,
+) -> Result<Vec<Vec<f64>>> {
+    Ok(predict_with_warnings(evaluations, blocks, material)?.0)
 }
 
 /// `predict`, with each experiment's warnings at `material` (`ExperimentModel::predict_with_warnings`).
 pub fn predict_with_warnings(
+    evaluations: &dyn Evaluations,
     blocks: &[&Block],
     material: &Material,
 ) -> Result<(Vec<Vec<f64>>, Vec<Vec<String>>)> {
-    let both: Vec<(Vec<f64>, Vec<String>)> = blocks
-        .par_iter()
-        .map(|b| {
-            b.model
-                .predict_with_warnings(material)
-                .with_context(|| format!("experiment `{}`", b.name))
+    let requests: Vec<Request> = blocks
+        .iter()
+        .map(|&block| Request {
+            block,
+            material: *material,
         })
-        .collect::<Result<_>>()?;
-    Ok(both.into_iter().unzip())
+        .collect();
+    Ok(evaluations.predict(&requests)?.into_iter().unzip())
 }
 
 /// How the Jacobian of the residuals is formed.
@@ -193,7 +191,9 @@ pub struct Objective<'a> {
     pub base: Material,
     pub blocks: Vec<&'a Block>,
     pub space: ParamSpace,
-    evaluations: AtomicUsize,
+    /// Where the model runs go (default: this process).
+    pub evaluations: &'a dyn Evaluations,
+    evaluation_count: AtomicUsize,
     jacobians: AtomicUsize,
 }
 
@@ -210,15 +210,24 @@ impl<'a> Objective<'a> {
             base,
             blocks,
             space,
-            evaluations: AtomicUsize::new(0),
+            evaluations: &IN_PROCESS,
+            evaluation_count: AtomicUsize::new(0),
             jacobians: AtomicUsize::new(0),
         })
+    }
+
+    /// The objective with its model runs sent to `evaluations`.
+    pub fn with_evaluations(self, evaluations: &'a dyn Evaluations) -> Self {
+        Objective {
+            evaluations,
+            ..self
+        }
     }
 
     /// Model evaluations so far: (real passes over all experiments, AD Jacobian passes).
     pub fn counts(&self) -> (usize, usize) {
         (
-            self.evaluations.load(Ordering::Relaxed),
+            self.evaluation_count.load(Ordering::Relaxed),
             self.jacobians.load(Ordering::Relaxed),
         )
     }
@@ -245,8 +254,8 @@ impl<'a> Objective<'a> {
 
     /// Predictions of every experiment at bounded parameters `p`.
     pub fn predictions(&self, p: &[f64]) -> Result<Vec<Vec<f64>>> {
-        self.evaluations.fetch_add(1, Ordering::Relaxed);
-        predict(&self.blocks, &self.material(p))
+        self.evaluation_count.fetch_add(1, Ordering::Relaxed);
+        predict(self.evaluations, &self.blocks, &self.material(p))
     }
 
     fn stack(&self, predictions: &[Vec<f64>]) -> Vec<f64> {
@@ -277,22 +286,10 @@ impl<'a> Objective<'a> {
             self.jacobians.fetch_add(1, Ordering::Relaxed);
         } else {
             // One base pass plus one pass per parameter.
-            self.evaluations
+            self.evaluation_count
                 .fetch_add(1 + names.len(), Ordering::Relaxed);
         }
-        let parts: Vec<(Vec<f64>, DMatrix<f64>)> = self
-            .blocks
-            .par_iter()
-            .map(|b| {
-                match kind {
-                    JacobianKind::Exact => b.model.predict_with_jacobian(&material, &names),
-                    JacobianKind::FiniteDifference => {
-                        finite_difference(b.model.as_ref(), &material, &names)
-                    }
-                }
-                .with_context(|| format!("experiment `{}`", b.name))
-            })
-            .collect::<Result<_>>()?;
+        let parts = self.jacobian_parts(&material, &names, kind)?;
         let predictions: Vec<Vec<f64>> = parts.iter().map(|(y, _)| y.clone()).collect();
         let r = self.stack(&predictions);
         let mut jac = DMatrix::zeros(r.len(), names.len());
@@ -307,6 +304,70 @@ impl<'a> Objective<'a> {
             row += j.nrows();
         }
         Ok((r, jac))
+    }
+}
+
+impl Objective<'_> {
+    /// Each experiment's prediction and Jacobian d(prediction)/d(parameter) at `material`:
+    /// a model's own when it is cheap and `kind` is exact (dual numbers, in this process),
+    /// else forward differences, whose runs go to the evaluations as one batch.
+    fn jacobian_parts(
+        &self,
+        material: &Material,
+        names: &[&str],
+        kind: JacobianKind,
+    ) -> Result<Vec<(Vec<f64>, DMatrix<f64>)>> {
+        let own = |b: &Block| kind == JacobianKind::Exact && b.model.jacobian_is_cheap();
+        let mut points = Vec::with_capacity(self.blocks.len());
+        let mut requests = Vec::new();
+        for &block in &self.blocks {
+            let p = match own(block) {
+                true => Vec::new(),
+                false => fd_points(material, names, block.model.fd_step())?,
+            };
+            if !own(block) {
+                requests.push(Request {
+                    block,
+                    material: *material,
+                });
+                requests.extend(p.iter().map(|(m, _)| Request {
+                    block,
+                    material: *m,
+                }));
+            }
+            points.push(p);
+        }
+        let mut predicted = self
+            .evaluations
+            .predict(&requests)?
+            .into_iter()
+            .map(|(y, _): Prediction| y);
+        let exact: Vec<Option<(Vec<f64>, DMatrix<f64>)>> = self
+            .blocks
+            .par_iter()
+            .map(|b| {
+                own(b)
+                    .then(|| b.model.predict_with_jacobian(material, names))
+                    .transpose()
+                    .with_context(|| format!("experiment `{}`", b.name))
+            })
+            .collect::<Result<_>>()?;
+        Ok(exact
+            .into_iter()
+            .zip(&points)
+            .map(|(e, p)| {
+                e.unwrap_or_else(|| {
+                    let y0 = predicted.next().expect("a base prediction per block");
+                    let ys: Vec<Vec<f64>> = p
+                        .iter()
+                        .map(|_| predicted.next().expect("a prediction per point"))
+                        .collect();
+                    let hs: Vec<f64> = p.iter().map(|(_, h)| *h).collect();
+                    let jacobian = fd_matrix(&y0, &ys, &hs);
+                    (y0, jacobian)
+                })
+            })
+            .collect())
     }
 }
 

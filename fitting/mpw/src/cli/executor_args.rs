@@ -1,5 +1,5 @@
-//! The executor options every command with many runs shares (`mpw sweep`): where the runs
-//! go (`--executor`), and the Slurm config file or the pool's size.
+//! The executor options every command with many runs shares (`mpw sweep`, `mpw fit`):
+//! where the runs go (`--executor`), and the Slurm config file or the pool's size.
 
 use anyhow::{bail, Context, Result};
 use runs::{Execute, Executor, InProcess, ProcessPool, Slurm, SlurmConfig};
@@ -32,31 +32,23 @@ pub struct ExecutorArgs {
 }
 
 impl ExecutorArgs {
-    /// The executor, running `execute` when in process; `batch_dir` is where the task
-    /// folders go unless Slurm's config names its shared work folder (then `job_name`
-    /// under it).
-    pub fn build<'a>(
+    /// The subprocess executor asked for (`None`: in process) and the folder its batches
+    /// go to: `local_dir`, or `job_name` under Slurm's shared `work_dir`.
+    pub fn subprocesses(
         &self,
         job_name: &str,
-        execute: Execute<'a>,
-        batch_dir: PathBuf,
-    ) -> Result<(Box<dyn Executor + 'a>, PathBuf)> {
+        local_dir: PathBuf,
+    ) -> Result<Option<(Box<dyn Executor + Send + Sync>, PathBuf)>> {
         if self.slurm.is_some() && self.executor != Kind::Slurm {
             bail!("--slurm is the config of --executor slurm");
         }
         let this = std::env::current_exe().context("cannot find this program's path")?;
         Ok(match self.executor {
-            Kind::InProcess => (
-                Box::new(InProcess {
-                    program: super::run_one::program(),
-                    execute,
-                }),
-                batch_dir,
-            ),
+            Kind::InProcess => None,
             Kind::Pool => {
                 let cpus = mpm_core::parallel::cpus();
                 let pool = ProcessPool::new(this, cpus, self.threads_per_run, self.retries);
-                (Box::new(pool), batch_dir)
+                Some((Box::new(pool), local_dir))
             }
             Kind::Slurm => {
                 let Some(path) = &self.slurm else {
@@ -64,7 +56,23 @@ impl ExecutorArgs {
                 };
                 let config = SlurmConfig::read(path)?;
                 let dir = config.work_dir.join(job_name);
-                (Box::new(Slurm::new(config, this, job_name)), dir)
+                Some((Box::new(Slurm::new(config, this, job_name)), dir))
+            }
+        })
+    }
+
+    /// The executor asked for, running `execute` when in process, and its batch folder.
+    pub fn build<'a>(
+        &self,
+        job_name: &str,
+        execute: Execute<'a>,
+        local_dir: PathBuf,
+    ) -> Result<(Box<dyn Executor + 'a>, PathBuf)> {
+        Ok(match self.subprocesses(job_name, local_dir.clone())? {
+            Some((executor, dir)) => (executor, dir),
+            None => {
+                let program = super::run_one::program();
+                (Box::new(InProcess { program, execute }), local_dir)
             }
         })
     }

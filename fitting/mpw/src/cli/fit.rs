@@ -9,6 +9,7 @@
 use crate::charts::fit as fit_charts;
 use crate::cli::progress::ProgressLine;
 use anyhow::Result;
+use fitting::fit::evaluations::executor::ExecutorEvaluations;
 use fitting::fit::objective::Block;
 use fitting::fit::optimize::estimate::remaining_iterations;
 use fitting::fit::optimize::run::{run_fit, FitProgress, FitResult, Optimizer};
@@ -63,6 +64,11 @@ pub struct Args {
     /// usually a unit mistake).
     #[arg(long)]
     pub allow_poor_fit: bool,
+    /// Where the MPM-level runs go (every run of a pass or a Jacobian at once): in this
+    /// process, a local pool of `mpw run-one` processes, or Slurm job arrays; single-point
+    /// runs stay in this process.
+    #[command(flatten)]
+    pub executor: super::executor_args::ExecutorArgs,
 }
 
 /// RMS against a group's mean curve above which a fit is poor: no parameter set of the
@@ -222,6 +228,23 @@ pub fn run(args: Args) -> Result<()> {
         args.set.display(),
         set.blocks.len()
     );
+    let name = args
+        .set
+        .file_stem()
+        .map_or("set".into(), |s| s.to_string_lossy().into_owned());
+    let job_name = format!("mpw-fit-{name}");
+    if let Some((executor, dir)) = args
+        .executor
+        .subprocesses(&job_name, args.out.join("runs"))?
+    {
+        eprintln!(
+            "MPM-level runs: {} in {}",
+            executor.describe(),
+            dir.display()
+        );
+        let evaluations = ExecutorEvaluations::new(executor, args.set.clone(), dir, stop.clone())?;
+        set.evaluations = std::sync::Arc::new(evaluations);
+    }
     let result = fit_with_progress(&set, optimizer, &stop)?;
     print!("{}", table(&set, &result));
     write_files(&args.out, &set, &result)?;

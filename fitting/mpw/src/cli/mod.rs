@@ -2,6 +2,7 @@
 
 pub mod bench;
 pub mod bench_mpm;
+pub mod bench_runs;
 pub mod bench_small;
 pub mod cut;
 pub mod drive;

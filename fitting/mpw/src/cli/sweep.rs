@@ -240,7 +240,7 @@ fn table(
                     let value = outcome
                         .value(n)
                         .with_context(|| format!("task {}: no result `{n}`", r.index))?;
-                    row.push(format!("{value:e}"));
+                    row.push(number(value));
                 }
             }
             Err(_) => {
@@ -260,6 +260,15 @@ fn column(name: &str, unit: &str) -> String {
     match unit {
         "-" | "" => name.to_string(),
         u => format!("{name}_{}", u.to_lowercase().replace('/', "_per_")),
+    }
+}
+
+/// A value in its shortest form that reads back to the same bits: plain between 1e-4 and
+/// 1e15 (`456`, `0.3837821021340549`), else with an exponent (`1.5e-9`).
+fn number(value: f64) -> String {
+    match value.abs() {
+        a if a == 0.0 || (1e-4..1e15).contains(&a) => format!("{value}"),
+        _ => format!("{value:e}"),
     }
 }
 
@@ -320,6 +329,21 @@ mod tests {
         assert_eq!(v.values[1].as_str(), Some("m,usl"));
         assert!(parse_vary("grid.spacing").is_err());
         assert!(parse_vary("grid.spacing=1,,2").is_err());
+    }
+
+    #[test]
+    fn numbers_are_short_and_read_back_to_the_same_bits() {
+        assert_eq!(number(456.0), "456");
+        assert_eq!(number(0.1 + 0.2), "0.30000000000000004");
+        assert_eq!(number(-1.5e-9), "-1.5e-9");
+        assert_eq!(number(f64::NAN), "NaN");
+        for v in [1.0 / 3.0, 6.02214076e23, 5e-324, 123456.789e-3, -0.0] {
+            assert_eq!(
+                number(v).parse::<f64>().unwrap().to_bits(),
+                v.to_bits(),
+                "{v}"
+            );
+        }
     }
 
     #[test]

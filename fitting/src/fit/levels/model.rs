@@ -78,13 +78,27 @@ pub fn with_values(material: &Material, names: &[&str], values: &[f64]) -> Mater
     })
 }
 
-/// Forward finite-difference Jacobian, one column per free parameter, columns in parallel;
-/// step h_k = `model.fd_step()` · max(|p_k|, 1e-3).
+/// Forward finite-difference Jacobian, one column per free parameter, columns in parallel
+/// (`fd_points`, `fd_matrix`).
 pub fn finite_difference<M: ExperimentModel + ?Sized>(
     model: &M,
     material: &Material,
     free: &[&str],
 ) -> Result<(Vec<f64>, DMatrix<f64>)> {
+    let points = fd_points(material, free, model.fd_step())?;
+    let y0 = model.predict(material)?;
+    let ys: Vec<Vec<f64>> = points
+        .par_iter()
+        .map(|(m, _)| model.predict(m))
+        .collect::<Result<_>>()?;
+    let hs: Vec<f64> = points.iter().map(|(_, h)| *h).collect();
+    let jacobian = fd_matrix(&y0, &ys, &hs);
+    Ok((y0, jacobian))
+}
+
+/// The forward-difference points of `free` around `material`: per parameter the material
+/// with that parameter stepped, and the step h.
+pub fn fd_points(material: &Material, free: &[&str], fd_step: f64) -> Result<Vec<(Material, f64)>> {
     let base: Vec<f64> = free
         .iter()
         .map(|n| {
@@ -93,17 +107,18 @@ pub fn finite_difference<M: ExperimentModel + ?Sized>(
                 .ok_or_else(|| anyhow::anyhow!("the material has no parameter `{n}`"))
         })
         .collect::<Result<_>>()?;
-    let y0 = model.predict(material)?;
-    let columns: Vec<Vec<f64>> = (0..free.len())
-        .into_par_iter()
+    Ok((0..free.len())
         .map(|k| {
-            let h = model.fd_step() * base[k].abs().max(1e-3);
+            let h = fd_step * base[k].abs().max(1e-3);
             let mut p = base.clone();
             p[k] += h;
-            let y = model.predict(&with_values(material, free, &p))?;
-            Ok(y.iter().zip(&y0).map(|(a, b)| (a - b) / h).collect())
+            (with_values(material, free, &p), h)
         })
-        .collect::<Result<_>>()?;
-    let jac = DMatrix::from_fn(y0.len(), free.len(), |i, k| columns[k][i]);
-    Ok((y0, jac))
+        .collect())
+}
+
+/// The forward-difference Jacobian from the base prediction `y0` and the predictions `ys`
+/// at the points of steps `hs` (rows: samples, columns: parameters).
+pub fn fd_matrix(y0: &[f64], ys: &[Vec<f64>], hs: &[f64]) -> DMatrix<f64> {
+    DMatrix::from_fn(y0.len(), hs.len(), |i, k| (ys[k][i] - y0[i]) / hs[k])
 }

@@ -145,7 +145,8 @@ pub fn run_fit(
             .collect();
         let space = ParamSpace::new(params)?;
         let blocks = stage.experiments.iter().map(|&e| &set.blocks[e]).collect();
-        let objective = Objective::new(material, blocks, space.clone())?;
+        let objective = Objective::new(material, blocks, space.clone())?
+            .with_evaluations(set.evaluations.as_ref());
         let mut runs = Vec::new();
         let options = LmOptions {
             ftol: set.ftol,
@@ -227,8 +228,11 @@ pub fn run_fit(
             break;
         }
     }
-    let (predictions, warnings) =
-        predict_with_warnings(&set.blocks.iter().collect::<Vec<_>>(), &material)?;
+    let (predictions, warnings) = predict_with_warnings(
+        set.evaluations.as_ref(),
+        &set.blocks.iter().collect::<Vec<_>>(),
+        &material,
+    )?;
     Ok(FitResult {
         warnings,
         interrupted: stages.iter().any(StageResult::interrupted),
@@ -267,7 +271,8 @@ pub fn refit(
         None => set.params.clone(),
     };
     let space = ParamSpace::new(params)?;
-    let objective = Objective::new(base, blocks, space.clone())?;
+    let objective =
+        Objective::new(base, blocks, space.clone())?.with_evaluations(set.evaluations.as_ref());
     let u0 = space.to_unbounded(&space.starts());
     let run = levenberg_marquardt(
         &objective,
@@ -286,8 +291,11 @@ pub fn refit(
 /// Evaluate every experiment of `set` with `material`: a result without stages.
 pub fn run_predict(set: &FitSet, material: Material) -> Result<FitResult> {
     let t0 = std::time::Instant::now();
-    let (predictions, warnings) =
-        predict_with_warnings(&set.blocks.iter().collect::<Vec<_>>(), &material)?;
+    let (predictions, warnings) = predict_with_warnings(
+        set.evaluations.as_ref(),
+        &set.blocks.iter().collect::<Vec<_>>(),
+        &material,
+    )?;
     Ok(FitResult {
         warnings,
         stages: Vec::new(),

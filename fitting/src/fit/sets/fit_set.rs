@@ -2,6 +2,7 @@
 //! as objective blocks at their model level, the free parameters and the stages.
 
 use crate::experiment::{load_experiments, Experiment, ShpbExperiment, TensileExperiment};
+use crate::fit::evaluations::{Evaluations, InProcess};
 use crate::fit::levels::model::{with_values, ExperimentModel, Material};
 use crate::fit::levels::mpm_shpb::{FaceForces, MpmShpb};
 use crate::fit::levels::shpb_input::face_signals;
@@ -21,6 +22,7 @@ use materials::AnyModel;
 use mpm_core::shape::ShapeFunction;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// A problem with one key of an `[[experiment]]` entry; `FitSet::load` places it at that
 /// key's line (`materials::toml_place`).
@@ -73,6 +75,9 @@ pub struct FitSet {
     pub ftol: f64,
     pub seed: u64,
     pub truth: BTreeMap<String, f64>,
+    /// Where the fit's model runs go (`FitSet::load`: this process; `mpw fit --executor`
+    /// sends the expensive ones to a process pool or Slurm).
+    pub evaluations: Arc<dyn Evaluations>,
 }
 
 impl FitSet {
@@ -212,6 +217,7 @@ impl FitSet {
             },
             seed: set.seed,
             truth: set.truth,
+            evaluations: Arc::new(InProcess),
         })
     }
 }

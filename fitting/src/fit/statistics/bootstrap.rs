@@ -89,7 +89,10 @@ pub fn bootstrap(
     let blocks: Vec<&Block> = set.blocks.iter().collect();
     let names: Vec<&str> = set.params.iter().map(|p| p.name.as_str()).collect();
     let optimum: Vec<f64> = names.iter().map(|n| material.param(n).unwrap()).collect();
-    let grids = scatter(&blocks, &predict(&blocks, material)?);
+    let grids = scatter(
+        &blocks,
+        &predict(set.evaluations.as_ref(), &blocks, material)?,
+    );
     let (mut values, mut curves) = (Vec::new(), Vec::new());
     let (mut not_converged, mut failed) = (0, 0);
     for b in 0..samples {
@@ -99,7 +102,8 @@ pub fn bootstrap(
             Ok(r) => {
                 not_converged += usize::from(!r.converged);
                 let m = with_values(material, &names, &r.values);
-                let p = predict(&blocks, &m).with_context(|| format!("bootstrap sample {b}"))?;
+                let p = predict(set.evaluations.as_ref(), &blocks, &m)
+                    .with_context(|| format!("bootstrap sample {b}"))?;
                 let mean_curves: Vec<Vec<f64>> = grids
                     .iter()
                     .map(|g| model_mean(&blocks, &g.group, &g.strain, &p))
@@ -151,7 +155,8 @@ fn jtj_std_errors(
         .map(|(p, &x)| p.starting_at(x));
     let space = ParamSpace::new(params.collect())?;
     let u = space.to_unbounded(&space.starts());
-    let objective = Objective::new(*material, blocks.to_vec(), space)?;
+    let objective = Objective::new(*material, blocks.to_vec(), space)?
+        .with_evaluations(set.evaluations.as_ref());
     Ok(statistics(&objective, &u)?.0)
 }
 

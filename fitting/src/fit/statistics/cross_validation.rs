@@ -33,7 +33,10 @@ pub fn leave_one_group_out(
 ) -> Result<Vec<Fold>> {
     let blocks: Vec<&Block> = set.blocks.iter().collect();
     let names: Vec<&str> = set.params.iter().map(|p| p.name.as_str()).collect();
-    let all = scatter(&blocks, &predict(&blocks, fitted)?);
+    let all = scatter(
+        &blocks,
+        &predict(set.evaluations.as_ref(), &blocks, fitted)?,
+    );
     let groups = groups(&blocks);
     anyhow::ensure!(
         groups.len() >= 2,
@@ -48,7 +51,10 @@ pub fn leave_one_group_out(
             .collect();
         let r = refit(set, set.base, kept, None)?;
         let material = with_values(&set.base, &names, &r.values);
-        let out = scatter(&blocks, &predict(&blocks, &material)?);
+        let out = scatter(
+            &blocks,
+            &predict(set.evaluations.as_ref(), &blocks, &material)?,
+        );
         folds.push(Fold {
             left_out: g.label.clone(),
             values: r.values,
