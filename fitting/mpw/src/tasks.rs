@@ -3,8 +3,9 @@
 //!
 //! - `scene`: an MPM scene file (`mpw simulate`'s) with the description's changes set by
 //!   field path and its seed as `grid.seed` (the grid-shift sequence); the outcome is the
-//!   scene's named results (`mpm_core::results`) and `run.steps`, `run.dt`,
-//!   `run.particles`; a simulation that stops early is an outcome with its failure;
+//!   scene's named results (`mpm_core::results`) and `run.time` (the time reached: the
+//!   end, or where the run stopped), `run.steps`, `run.dt`, `run.particles`; a
+//!   simulation that stops early is an outcome with its failure;
 //! - `prediction`: one experiment of a fit set predicted at one material
 //!   (`fitting::fit::evaluations::task`), the runs of `mpw fit --executor`.
 
@@ -71,6 +72,7 @@ fn scene(description: &RunDescription, dir: &Path, stop: Option<&AtomicBool>) ->
                 )
             })?;
     let scene = mpm_core::scene::from_description(&spec, path)?;
+    let end = scene.end;
     let mut warnings = Vec::new();
     let summary = mpm_core::run::run_scene(
         scene,
@@ -94,6 +96,8 @@ fn scene(description: &RunDescription, dir: &Path, stop: Option<&AtomicBool>) ->
     for r in &summary.results {
         outcome.push(&r.name, r.value, r.unit);
     }
+    let reached = summary.failure.as_ref().map_or(end, |f| f.time);
+    outcome.push("run.time", reached, "s");
     outcome.push("run.steps", summary.steps as f64, "-");
     outcome.push("run.dt", summary.time_step.dt, "s");
     outcome.push("run.particles", summary.particles as f64, "-");

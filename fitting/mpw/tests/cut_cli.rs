@@ -120,6 +120,35 @@ fn a_small_stability_map_writes_its_cells() {
     );
     assert!(rows[1].starts_with("linear+shift,1e-4,60,2e-2,"), "{table}");
     assert!(dir.join("map_linear.png").is_file() && dir.join("map_linear_shift.png").is_file());
+    // the same cells from the process pool, but for the wall times
+    let pooled = dir.join("pool");
+    mpw_ok(&[
+        "cut",
+        "map",
+        "--spacings",
+        "1e-4",
+        "--points",
+        "60",
+        "--variants",
+        variants,
+        "--feed",
+        "0.02",
+        "--executor",
+        "pool",
+        "--out",
+        pooled.to_str().unwrap(),
+    ]);
+    let without_wall = |t: &str| -> Vec<String> {
+        t.lines()
+            .map(|l| {
+                let mut c: Vec<&str> = l.split(',').collect();
+                c.remove(4);
+                c.join(",")
+            })
+            .collect()
+    };
+    let pooled = std::fs::read_to_string(pooled.join("map.csv")).unwrap();
+    assert_eq!(without_wall(&table), without_wall(&pooled));
     let bad = mpw(&[
         "cut",
         "map",
