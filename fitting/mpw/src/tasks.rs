@@ -7,7 +7,11 @@
 //!   end, or where the run stopped), `run.steps`, `run.dt`, `run.particles`; a
 //!   simulation that stops early is an outcome with its failure;
 //! - `prediction`: one experiment of a fit set predicted at one material
-//!   (`fitting::fit::evaluations::task`), the runs of `mpw fit --executor`.
+//!   (`fitting::fit::evaluations::task`), the runs of `mpw fit --executor`;
+//! - `verify-part`: one part of the verification catalogue (`verify::CATALOGUE`; input:
+//!   the data folder; `part = "mpm"`, `full = true`), its rows written to `rows.toml` in
+//!   the run folder (a row is more than a value: reference, tolerance, verdict, note); the
+//!   outcome counts them.
 
 use anyhow::{bail, Context, Result};
 use runs::{Outcome, RunDescription};
@@ -16,7 +20,10 @@ use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The run kinds, for messages.
-pub const KINDS: [&str; 2] = ["scene", fitting::fit::evaluations::task::KIND];
+pub const KINDS: [&str; 3] = ["scene", fitting::fit::evaluations::task::KIND, VERIFY_PART];
+
+/// The run kind of a part of the verification catalogue.
+pub const VERIFY_PART: &str = "verify-part";
 
 /// Run `description` into `dir`; `stop`, when given, stops a simulation at its next step
 /// (the task then fails as interrupted).
@@ -30,6 +37,7 @@ pub fn execute(
         fitting::fit::evaluations::task::KIND => {
             fitting::fit::evaluations::task::execute_prediction(description, dir)
         }
+        VERIFY_PART => verify_part(description, dir),
         other => bail!("run kind `{other}` is not one of {}", KINDS.join(", ")),
     }
 }
@@ -101,5 +109,33 @@ fn scene(description: &RunDescription, dir: &Path, stop: Option<&AtomicBool>) ->
     outcome.push("run.steps", summary.steps as f64, "-");
     outcome.push("run.dt", summary.time_step.dt, "s");
     outcome.push("run.particles", summary.particles as f64, "-");
+    Ok(outcome)
+}
+
+/// The rows file of a `verify-part` run.
+pub const ROWS_FILE: &str = "rows.toml";
+
+#[derive(serde::Serialize, serde::Deserialize)]
+pub struct VerifyRows {
+    pub rows: Vec<crate::verify::row::Row>,
+}
+
+fn verify_part(description: &RunDescription, dir: &Path) -> Result<Outcome> {
+    let setting = |key: &str| description.set.get(key);
+    let Some(part) = setting("part").and_then(|v| v.as_str()) else {
+        bail!("a verify-part run needs `part` (a part of the catalogue)");
+    };
+    let full = match setting("full") {
+        None => false,
+        Some(v) => v.as_bool().context("`full` must be true or false")?,
+    };
+    let data = crate::verify::data::VerifyData::new(&description.input);
+    let inputs = crate::verify::Inputs { data: &data, full };
+    let rows = crate::verify::part(&inputs, part)?;
+    let count = rows.len();
+    let text = toml::to_string(&VerifyRows { rows }).context("rows as TOML")?;
+    runs::atomic::write(&dir.join(ROWS_FILE), &text)?;
+    let mut outcome = Outcome::default();
+    outcome.push("rows", count as f64, "-");
     Ok(outcome)
 }

@@ -349,3 +349,44 @@ fn an_mpm_level_fit_through_the_pool_gives_the_same_report() {
     assert_eq!(reports[0], reports[1]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A part of the verification catalogue run as a task (`mpw run-one`, kind `verify-part`)
+/// gives the rows the part gives in this process, every number to the bit.
+#[test]
+fn a_verification_part_as_a_task_gives_the_rows_in_process() {
+    let dir = temp("verify");
+    let data = root().join("data");
+    let mut d = runs::RunDescription::new("verify-part", &data);
+    d.set
+        .insert("part".into(), toml::Value::String("shpb".into()));
+    d.write(&dir.join("description.toml")).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_mpw"))
+        .arg("run-one")
+        .arg(dir.join("description.toml"))
+        .arg(dir.join("task"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(dir.join("task/run/rows.toml")).unwrap();
+    let task: mpw::tasks::VerifyRows = toml::from_str(&text).unwrap();
+    let verify_data = mpw::verify::data::VerifyData::new(&data);
+    let inputs = mpw::verify::Inputs {
+        data: &verify_data,
+        full: false,
+    };
+    let here = mpw::verify::part(&inputs, "shpb").unwrap();
+    assert!(here.len() >= 5, "{} rows", here.len());
+    assert_eq!(task.rows.len(), here.len());
+    for (a, b) in task.rows.iter().zip(&here) {
+        assert_eq!(a.name, b.name);
+        assert_eq!(a.measured.to_bits(), b.measured.to_bits(), "{}", a.name);
+        assert_eq!(a.reference.to_bits(), b.reference.to_bits(), "{}", a.name);
+        assert_eq!(
+            (a.verdict, &a.tolerance),
+            (b.verdict, &b.tolerance),
+            "{}",
+            a.name
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

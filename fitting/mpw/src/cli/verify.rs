@@ -34,6 +34,53 @@ pub struct Args {
     /// this CSV file, to compare two builds value by value.
     #[arg(long)]
     pub values: Option<PathBuf>,
+    /// Where the catalogue's parts run: in this process (one after another), or each part
+    /// a task of a local process pool or a Slurm job array (their runs in
+    /// out/verify_runs, or under Slurm's work_dir).
+    #[command(flatten)]
+    pub executor: super::executor_args::ExecutorArgs,
+}
+
+/// Every part of the catalogue as a task of `executor`, the rows read back in table order.
+fn table_through(
+    executor: &dyn runs::Executor,
+    dir: &Path,
+    data: &Path,
+    full: bool,
+) -> Result<Vec<Row>> {
+    use crate::tasks::{VerifyRows, ROWS_FILE, VERIFY_PART};
+    let data = data
+        .canonicalize()
+        .map_err(|e| anyhow::anyhow!("{}: {e}", data.display()))?;
+    let descriptions: Vec<runs::RunDescription> = crate::verify::CATALOGUE
+        .iter()
+        .map(|(part, _)| {
+            let mut d = runs::RunDescription::new(VERIFY_PART, &data);
+            d.set
+                .insert("part".into(), toml::Value::String(part.to_string()));
+            d.set.insert("full".into(), toml::Value::Boolean(full));
+            d
+        })
+        .collect();
+    let batch = runs::Batch::create(dir, &descriptions)?;
+    eprintln!(
+        "{} parts ({}) in {}",
+        descriptions.len(),
+        executor.describe(),
+        batch.dir.display()
+    );
+    let stop = crate::cli::interrupt::interrupt_flag()?;
+    let mut rows = Vec::new();
+    for report in executor.run(&batch, &stop, &|_, _| {})? {
+        report.result.map_err(|f| anyhow::anyhow!("{f}"))?;
+        let file = batch.task(report.index).run().join(ROWS_FILE);
+        let text = std::fs::read_to_string(&file)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))?;
+        let part: VerifyRows =
+            toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))?;
+        rows.extend(part.rows);
+    }
+    crate::verify::unique(rows)
 }
 
 /// Every row with its numbers in shortest round-trip form.
@@ -197,7 +244,13 @@ pub fn run(args: Args) -> Result<()> {
         data: &data,
         full: args.full,
     };
-    let cases = crate::verify::table(&inputs)?;
+    let subprocesses = args
+        .executor
+        .subprocesses("mpw-verify", PathBuf::from("out/verify_runs"))?;
+    let cases = match subprocesses {
+        None => crate::verify::table(&inputs)?,
+        Some((executor, dir)) => table_through(executor.as_ref(), &dir, &args.data, args.full)?,
+    };
     println!(
         "{:<60} {:>14} {:>14} {:>12} result",
         "case", "measured", "reference", "tolerance"

@@ -41,10 +41,26 @@ pub const CATALOGUE: [(&str, Part); 6] = [
 /// builds' tables are compared by name), is an error.
 pub fn table(inputs: &Inputs) -> anyhow::Result<Vec<Row>> {
     let mut rows: Vec<Row> = vec![];
-    for (name, part) in CATALOGUE {
-        let part_rows = part(inputs).map_err(|e| e.context(format!("verification part {name}")))?;
-        rows.extend(part_rows);
+    for (name, _) in CATALOGUE {
+        rows.extend(part(inputs, name)?);
     }
+    unique(rows)
+}
+
+/// The rows of the part `name` of the catalogue.
+pub fn part(inputs: &Inputs, name: &str) -> anyhow::Result<Vec<Row>> {
+    let Some((_, rows)) = CATALOGUE.iter().find(|(n, _)| *n == name) else {
+        let names: Vec<&str> = CATALOGUE.iter().map(|(n, _)| *n).collect();
+        anyhow::bail!(
+            "no verification part `{name}`; the parts are {}",
+            names.join(", ")
+        );
+    };
+    rows(inputs).map_err(|e| e.context(format!("verification part {name}")))
+}
+
+/// `rows`, unless two of them have one name.
+pub fn unique(rows: Vec<Row>) -> anyhow::Result<Vec<Row>> {
     let mut names: Vec<&str> = rows.iter().map(|r| r.name.as_str()).collect();
     names.sort_unstable();
     if let Some(twice) = names.windows(2).find(|w| w[0] == w[1]) {
