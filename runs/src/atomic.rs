@@ -1,6 +1,7 @@
 //! Files that appear whole or not at all: written beside their final name, then renamed
 //! (a rename within one folder is atomic on POSIX file systems, NFS and Lustre included),
-//! so that a reader polling for a task's files never sees half of one.
+//! so that a reader polling for a task's files never sees half of one; and the task files
+//! as TOML (`write_toml`, `read_toml`).
 
 use anyhow::{Context, Result};
 use std::io::Write;
@@ -26,6 +27,19 @@ pub fn write(path: &Path, text: &str) -> Result<()> {
             path.display()
         )
     })
+}
+
+/// Write `value` as TOML to `path` (atomically).
+pub fn write_toml<T: serde::Serialize>(path: &Path, value: &T) -> Result<()> {
+    let text = toml::to_string(value).with_context(|| format!("{} as TOML", path.display()))?;
+    write(path, &text)
+}
+
+/// Read the TOML file `path`, `what` it is naming it in errors (`the manifest`).
+pub fn read_toml<T: serde::de::DeserializeOwned>(path: &Path, what: &str) -> Result<T> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read {what} {}", path.display()))?;
+    toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {}", path.display(), e.message()))
 }
 
 #[cfg(test)]

@@ -15,7 +15,7 @@
 //! The description's hash (`hash`, FNV-1a 64 of its TOML text) names it in the manifest, so
 //! that a result can be traced to exactly the description that produced it.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -58,10 +58,8 @@ impl RunDescription {
 
     /// Read a description file; a relative `input` is made relative to the file's folder.
     pub fn read(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read the run description {}", path.display()))?;
-        let mut description: RunDescription = toml::from_str(&text)
-            .map_err(|e| anyhow::anyhow!("{}: {}", path.display(), e.message()))?;
+        let mut description: RunDescription =
+            crate::atomic::read_toml(path, "the run description")?;
         if description.input.is_relative() {
             let folder = path.parent().unwrap_or(Path::new("."));
             description.input = folder.join(&description.input);

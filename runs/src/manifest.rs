@@ -6,7 +6,7 @@
 //! stopped from outside (killed, out of memory, over its time limit, a node lost) and may
 //! be tried again.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -46,16 +46,11 @@ pub struct Manifest {
 
 impl Manifest {
     pub fn write(&self, path: &Path) -> Result<()> {
-        crate::atomic::write(
-            path,
-            &toml::to_string(self).expect("a manifest is plain TOML"),
-        )
+        crate::atomic::write_toml(path, self)
     }
 
     pub fn read(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read the manifest {}", path.display()))?;
-        toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {}", path.display(), e.message()))
+        crate::atomic::read_toml(path, "the manifest")
     }
 }
 

@@ -5,7 +5,7 @@
 //! Values are written as TOML floats in Rust's shortest round-trip form (NaN and ±inf
 //! included), so that an outcome read back holds the computed values bit for bit.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -89,16 +89,11 @@ impl Outcome {
     }
 
     pub fn write(&self, path: &Path) -> Result<()> {
-        crate::atomic::write(
-            path,
-            &toml::to_string(self).expect("an outcome is plain TOML"),
-        )
+        crate::atomic::write_toml(path, self)
     }
 
     pub fn read(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read the outcome {}", path.display()))?;
-        toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {}", path.display(), e.message()))
+        crate::atomic::read_toml(path, "the outcome")
     }
 }
 

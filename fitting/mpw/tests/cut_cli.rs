@@ -97,20 +97,25 @@ fn a_small_stability_map_writes_its_cells() {
     let dir = std::env::temp_dir().join(format!("mpw-cut-map-{}", std::process::id()));
     let out = dir.to_str().unwrap();
     let variants = "linear,linear+shift";
-    mpw_ok(&[
-        "cut",
-        "map",
-        "--spacings",
-        "1e-4",
-        "--points",
-        "60",
-        "--variants",
-        variants,
-        "--feed",
-        "0.02",
-        "--out",
-        out,
-    ]);
+    let map = |out: &str, executor: &str| {
+        mpw_ok(&[
+            "cut",
+            "map",
+            "--spacings",
+            "1e-4",
+            "--points",
+            "60",
+            "--variants",
+            variants,
+            "--feed",
+            "0.02",
+            "--executor",
+            executor,
+            "--out",
+            out,
+        ])
+    };
+    map(out, "in-process");
     let table = std::fs::read_to_string(dir.join("map.csv")).unwrap();
     let rows: Vec<&str> = table.lines().skip(1).collect();
     assert_eq!(rows.len(), 2, "{table}");
@@ -122,22 +127,7 @@ fn a_small_stability_map_writes_its_cells() {
     assert!(dir.join("map_linear.png").is_file() && dir.join("map_linear_shift.png").is_file());
     // the same cells from the process pool, but for the wall times
     let pooled = dir.join("pool");
-    mpw_ok(&[
-        "cut",
-        "map",
-        "--spacings",
-        "1e-4",
-        "--points",
-        "60",
-        "--variants",
-        variants,
-        "--feed",
-        "0.02",
-        "--executor",
-        "pool",
-        "--out",
-        pooled.to_str().unwrap(),
-    ]);
+    map(pooled.to_str().unwrap(), "pool");
     let without_wall = |t: &str| -> Vec<String> {
         t.lines()
             .map(|l| {

@@ -13,7 +13,7 @@
 //! sbatch_options = ["--qos=normal"]   # passed to sbatch as they are
 //! ```
 
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -51,10 +51,7 @@ impl SlurmConfig {
     /// Read and check a config file; a relative `work_dir` or `program` is relative to
     /// the file's folder.
     pub fn read(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read the Slurm config {}", path.display()))?;
-        let mut config: SlurmConfig = toml::from_str(&text)
-            .map_err(|e| anyhow::anyhow!("{}: {}", path.display(), e.message()))?;
+        let mut config: SlurmConfig = crate::atomic::read_toml(path, "the Slurm config")?;
         let folder = path.parent().unwrap_or(Path::new("."));
         config.work_dir = folder.join(&config.work_dir);
         config.program = config.program.map(|p| folder.join(p));
