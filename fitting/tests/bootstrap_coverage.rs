@@ -182,3 +182,54 @@ fn bootstrap_intervals_cover_the_truth_and_jtj_intervals_do_not() {
         "median bootstrap sd / JᵀJ se of C {ratio_c} below {MIN_RATIO_C}"
     );
 }
+
+/// In-process predictions that let three bootstrap refits run at once, as a cluster's
+/// evaluations do.
+struct ThreeAtOnce;
+
+impl fitting::fit::evaluations::Evaluations for ThreeAtOnce {
+    fn describe(&self) -> String {
+        "three fits at once".into()
+    }
+
+    fn predict(
+        &self,
+        requests: &[fitting::fit::evaluations::Request],
+    ) -> anyhow::Result<Vec<fitting::fit::evaluations::Prediction>> {
+        fitting::fit::evaluations::InProcess.predict(requests)
+    }
+
+    fn fits_at_once(&self) -> usize {
+        3
+    }
+}
+
+/// Refits side by side give the bootstrap of refits one after another, to the bit.
+#[test]
+fn refits_side_by_side_give_the_same_bootstrap() {
+    use fitting::fit::evaluations::Evaluations;
+    let mut set = population(3);
+    let fit = run_fit(&set, Optimizer::LmExact, &|_| {
+        std::ops::ControlFlow::Continue(())
+    })
+    .unwrap();
+    let one = bootstrap(&set, &fit.material, 8, &|_| {}).unwrap();
+    set.evaluations = std::sync::Arc::new(ThreeAtOnce);
+    assert_eq!(set.evaluations.fits_at_once(), 3);
+    let three = bootstrap(&set, &fit.material, 8, &|_| {}).unwrap();
+    assert_eq!((one.samples, one.failed), (three.samples, three.failed));
+    for (a, b) in one.params.iter().zip(&three.params) {
+        for (x, y) in [
+            (a.mean, b.mean),
+            (a.sd, b.sd),
+            (a.lo95, b.lo95),
+            (a.hi95, b.hi95),
+        ] {
+            assert_eq!(x.to_bits(), y.to_bits(), "{}", a.name);
+        }
+    }
+    for (a, b) in one.bands.iter().zip(&three.bands) {
+        assert_eq!(a.lo95, b.lo95);
+        assert_eq!(a.hi95, b.hi95);
+    }
+}

@@ -3,6 +3,9 @@
 //! `log-<attempt>.txt`. `workers × threads_per_task` should not exceed the CPUs this
 //! process may use (`new` makes it so): a thread beyond them only waits for a CPU.
 //!
+//! Batches may be run from several threads at once (a bootstrap's refits): the pool counts
+//! its running subprocesses across them, so that `workers` is the limit of them all.
+//!
 //! Each subprocess leads its own process group, so that a Ctrl-C at the terminal reaches
 //! this process alone, which then stops every task it started (SIGTERM to its group, so a
 //! run writes its last state) and waits for them.
@@ -13,7 +16,7 @@ use anyhow::{Context, Result};
 use std::os::unix::process::CommandExt;
 use std::path::PathBuf;
 use std::process::{Child, Command, Stdio};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Duration;
 
 pub struct ProcessPool {
@@ -23,6 +26,8 @@ pub struct ProcessPool {
     pub threads_per_task: usize,
     /// Starts again of a task left without a manifest.
     pub retries: usize,
+    /// Subprocesses running, over every batch under way.
+    running: AtomicUsize,
 }
 
 /// How often the pool looks at its subprocesses.
@@ -37,7 +42,21 @@ impl ProcessPool {
             workers: (cpus / threads_per_task).max(1),
             threads_per_task,
             retries,
+            running: AtomicUsize::new(0),
         }
+    }
+
+    /// Take a place for one more subprocess, if there is one.
+    fn take_place(&self) -> bool {
+        self.running
+            .fetch_update(Ordering::AcqRel, Ordering::Acquire, |n| {
+                (n < self.workers).then_some(n + 1)
+            })
+            .is_ok()
+    }
+
+    fn give_places(&self, n: usize) {
+        self.running.fetch_sub(n, Ordering::AcqRel);
     }
 
     fn start(&self, batch: &Batch, index: usize, attempt: usize) -> Result<Child> {
@@ -69,25 +88,32 @@ impl Executor for ProcessPool {
 
     fn run(&self, batch: &Batch, stop: &AtomicBool, progress: Progress) -> Result<Vec<TaskReport>> {
         in_rounds(batch, self.retries, stop, |tasks, attempt| {
-            let mut queue = tasks.iter().copied();
+            let mut queue = tasks.iter().copied().peekable();
             let mut running: Vec<Child> = Vec::new();
             let mut done = 0;
             loop {
                 if stop.load(Ordering::Relaxed) {
+                    self.give_places(running.len());
                     return terminate(running);
                 }
-                while running.len() < self.workers {
-                    match queue.next() {
-                        Some(i) => running.push(self.start(batch, i, attempt)?),
-                        None => break,
+                while queue.peek().is_some() && self.take_place() {
+                    let i = queue.next().expect("peeked");
+                    match self.start(batch, i, attempt) {
+                        Ok(child) => running.push(child),
+                        Err(e) => {
+                            self.give_places(running.len() + 1);
+                            terminate(running)?;
+                            return Err(e);
+                        }
                     }
                 }
-                if running.is_empty() {
+                if running.is_empty() && queue.peek().is_none() {
                     return Ok(());
                 }
                 let before = running.len();
                 running.retain_mut(|child| !matches!(child.try_wait(), Ok(Some(_))));
                 if running.len() < before {
+                    self.give_places(before - running.len());
                     done += before - running.len();
                     progress(done, batch.len);
                 } else {

@@ -61,6 +61,17 @@ impl ExecutorArgs {
         })
     }
 
+    /// How many runs the executor asked for runs at once: the CPUs in process, the
+    /// pool's workers, Slurm's `max_running`.
+    pub fn runs_at_once(&self) -> Result<usize> {
+        let cpus = mpm_core::parallel::cpus();
+        Ok(match (self.executor, &self.slurm) {
+            (Kind::Slurm, Some(path)) => SlurmConfig::read(path)?.max_running,
+            (Kind::Pool, _) => (cpus / self.threads_per_run.max(1)).max(1),
+            _ => cpus,
+        })
+    }
+
     /// The executor asked for, running `execute` when in process, and its batch folder.
     pub fn build<'a>(
         &self,

@@ -242,7 +242,11 @@ pub fn run(args: Args) -> Result<()> {
             executor.describe(),
             dir.display()
         );
-        let evaluations = ExecutorEvaluations::new(executor, args.set.clone(), dir, stop.clone())?;
+        let mut evaluations =
+            ExecutorEvaluations::new(executor, args.set.clone(), dir, stop.clone())?;
+        // bootstrap refits side by side, as many as keep a Jacobian pass of each in flight
+        let pass = set.blocks.len() * (1 + set.params.len());
+        evaluations.fits_at_once = (args.executor.runs_at_once()? / pass.max(1)).max(1);
         set.evaluations = std::sync::Arc::new(evaluations);
     }
     let result = fit_with_progress(&set, optimizer, &stop)?;

@@ -22,6 +22,8 @@ pub struct ExecutorEvaluations {
     pub work_dir: PathBuf,
     /// Set to cancel the batch under way.
     pub stop: Arc<AtomicBool>,
+    /// Independent fits that may run at once (`Evaluations::fits_at_once`).
+    pub fits_at_once: usize,
     batches: AtomicUsize,
 }
 
@@ -40,6 +42,7 @@ impl ExecutorEvaluations {
             set_file,
             work_dir,
             stop,
+            fits_at_once: 1,
             batches: AtomicUsize::new(0),
         })
     }
@@ -75,6 +78,10 @@ impl ExecutorEvaluations {
 impl Evaluations for ExecutorEvaluations {
     fn describe(&self) -> String {
         self.executor.describe()
+    }
+
+    fn fits_at_once(&self) -> usize {
+        self.fits_at_once.max(1)
     }
 
     fn predict(&self, requests: &[Request]) -> Result<Vec<Prediction>> {

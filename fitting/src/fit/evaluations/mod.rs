@@ -33,6 +33,12 @@ pub trait Evaluations: Send + Sync {
 
     /// The prediction of every request, in order; an error names the experiment.
     fn predict(&self, requests: &[Request]) -> Result<Vec<Prediction>>;
+
+    /// How many independent fits (bootstrap refits) may ask for predictions at once: one
+    /// in this process, whose threads a single fit's batches already fill.
+    fn fits_at_once(&self) -> usize {
+        1
+    }
 }
 
 /// Every request in this process, side by side on its threads.

@@ -22,6 +22,7 @@ use anyhow::{Context, Result};
 use materials::material::Model;
 use rand::Rng;
 use rand_pcg::Pcg64;
+use rayon::prelude::*;
 
 /// One parameter's bootstrap distribution beside its JᵀJ standard error.
 #[derive(Debug, Clone)]
@@ -78,12 +79,14 @@ fn resample<'a>(blocks: &[&'a Block], rng: &mut Pcg64) -> Vec<&'a Block> {
 }
 
 /// `samples` bootstrap refits of `set` from the optimum `material`; `progress(b)` after
-/// each sample.
+/// each sample. The set's evaluations say how many refits run at once
+/// (`Evaluations::fits_at_once`: one in this process, more when their runs go to a
+/// cluster); the samples are the same either way.
 pub fn bootstrap(
     set: &FitSet,
     material: &Material,
     samples: usize,
-    progress: &dyn Fn(usize),
+    progress: &(dyn Fn(usize) + Sync),
 ) -> Result<Bootstrap> {
     let t0 = std::time::Instant::now();
     let blocks: Vec<&Block> = set.blocks.iter().collect();
@@ -93,14 +96,13 @@ pub fn bootstrap(
         &blocks,
         &predict(set.evaluations.as_ref(), &blocks, material)?,
     );
-    let (mut values, mut curves) = (Vec::new(), Vec::new());
-    let (mut not_converged, mut failed) = (0, 0);
-    for b in 0..samples {
+    // one resample's refit: its values, its model's mean curves and whether it converged;
+    // `None` when the refit failed
+    let sample = |b: usize| -> Result<Option<(Vec<f64>, Vec<Vec<f64>>, bool)>> {
         let mut rng = Pcg64::new(set.seed as u128, b as u128);
         let drawn = resample(&blocks, &mut rng);
-        match refit(set, *material, drawn, Some(&optimum)) {
+        let refitted = match refit(set, *material, drawn, Some(&optimum)) {
             Ok(r) => {
-                not_converged += usize::from(!r.converged);
                 let m = with_values(material, &names, &r.values);
                 let p = predict(set.evaluations.as_ref(), &blocks, &m)
                     .with_context(|| format!("bootstrap sample {b}"))?;
@@ -108,15 +110,40 @@ pub fn bootstrap(
                     .iter()
                     .map(|g| model_mean(&blocks, &g.group, &g.strain, &p))
                     .collect();
-                curves.push(mean_curves);
-                values.push(r.values);
+                Some((r.values, mean_curves, r.converged))
             }
             Err(e) => {
                 eprintln!("bootstrap sample {b}: refit failed: {e:#}");
-                failed += 1;
+                None
             }
-        }
+        };
         progress(b);
+        Ok(refitted)
+    };
+    let refits: Vec<Option<(Vec<f64>, Vec<Vec<f64>>, bool)>> = match set.evaluations.fits_at_once()
+    {
+        1 => (0..samples).map(sample).collect::<Result<_>>()?,
+        k => rayon::ThreadPoolBuilder::new()
+            .num_threads(k)
+            .build()?
+            .install(|| {
+                (0..samples)
+                    .into_par_iter()
+                    .map(sample)
+                    .collect::<Result<_>>()
+            })?,
+    };
+    let (mut values, mut curves) = (Vec::new(), Vec::new());
+    let (mut not_converged, mut failed) = (0, 0);
+    for refitted in refits {
+        match refitted {
+            Some((v, c, converged)) => {
+                not_converged += usize::from(!converged);
+                values.push(v);
+                curves.push(c);
+            }
+            None => failed += 1,
+        }
     }
     anyhow::ensure!(
         values.len() >= 2,
