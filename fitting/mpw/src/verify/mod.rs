@@ -28,10 +28,12 @@ pub struct Inputs<'a> {
 pub type Part = fn(&Inputs) -> anyhow::Result<Vec<Row>>;
 
 /// The catalogue, part by part, in table order.
-pub const CATALOGUE: [(&str, Part); 6] = [
+pub const CATALOGUE: [(&str, Part); 8] = [
     ("materials", materials::rows),
     ("shpb", shpb::rows),
     ("fit", fit::rows),
+    ("fit-mpm", fit::mpm_rows),
+    ("fit-real", fit::real_rows),
     ("mpm", mpm::rows),
     ("shpb-model", shpb_model::rows),
     ("cutting", cutting::rows),

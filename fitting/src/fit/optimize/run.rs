@@ -23,6 +23,7 @@ use materials::material::Model;
 use nalgebra::DMatrix;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
+use rayon::prelude::*;
 use std::ops::ControlFlow;
 
 /// Which optimizer a stage uses.
@@ -116,7 +117,7 @@ fn random_start(space: &ParamSpace, rng: &mut Pcg64) -> Vec<f64> {
 pub fn run_fit(
     set: &FitSet,
     optimizer: Optimizer,
-    progress: &dyn Fn(&FitProgress) -> ControlFlow<()>,
+    progress: &(dyn Fn(&FitProgress) -> ControlFlow<()> + Sync),
 ) -> Result<FitResult> {
     if set.params.is_empty() {
         bail!(
@@ -152,12 +153,13 @@ pub fn run_fit(
             ftol: set.ftol,
             ..LmOptions::default()
         };
-        for start in 0..set.starts {
-            let u0 = if start == 0 {
-                space.to_unbounded(&space.starts())
-            } else {
-                random_start(&space, &mut rng)
-            };
+        let starts: Vec<Vec<f64>> = (0..set.starts)
+            .map(|start| match start {
+                0 => space.to_unbounded(&space.starts()),
+                _ => random_start(&space, &mut rng),
+            })
+            .collect();
+        let one_start = |start: usize| {
             let report = |point: &HistoryPoint| {
                 progress(&FitProgress {
                     stage: si,
@@ -167,28 +169,47 @@ pub fn run_fit(
                     point,
                 })
             };
-            let run = match optimizer {
+            let u0 = &starts[start];
+            match optimizer {
                 Optimizer::LmExact => {
-                    levenberg_marquardt(&objective, &u0, JacobianKind::Exact, &options, &report)
+                    levenberg_marquardt(&objective, u0, JacobianKind::Exact, &options, &report)
                 }
                 Optimizer::LmFiniteDifference => levenberg_marquardt(
                     &objective,
-                    &u0,
+                    u0,
                     JacobianKind::FiniteDifference,
                     &options,
                     &report,
                 ),
                 Optimizer::NelderMead => {
-                    nelder_mead(&objective, &u0, &NmOptions::default(), &report)
+                    nelder_mead(&objective, u0, &NmOptions::default(), &report)
                 }
-            };
+            }
+        };
+        // starts side by side when the runs go to an executor that takes several fits at
+        // once; else one after another, the next one only if the last was not interrupted
+        let at_once = set.evaluations.fits_at_once().min(set.starts);
+        let mut results = Vec::new();
+        if at_once > 1 {
+            results = rayon::ThreadPoolBuilder::new()
+                .num_threads(at_once)
+                .build()?
+                .install(|| (0..set.starts).into_par_iter().map(one_start).collect());
+        } else {
+            for start in 0..set.starts {
+                let run = one_start(start);
+                let interrupted = run.as_ref().is_ok_and(|r| r.interrupted);
+                results.push(run);
+                if interrupted {
+                    break;
+                }
+            }
+        }
+        for (start, run) in results.into_iter().enumerate() {
             match run {
                 Ok(r) => runs.push(r),
                 Err(e) if start > 0 => eprintln!("stage {}: start {start} failed: {e:#}", si + 1),
                 Err(e) => return Err(e),
-            }
-            if runs.last().is_some_and(|r| r.interrupted) {
-                break;
             }
         }
         let best = (0..runs.len())
