@@ -34,7 +34,7 @@ pub mod task;
 
 pub use batch::{Batch, TaskFailure, TaskReport};
 pub use description::RunDescription;
-pub use executor::{Executor, InProcess, ProcessPool, Slurm, SlurmConfig};
+pub use executor::{BatchState, Executor, InProcess, ProcessPool, Slurm, SlurmConfig};
 pub use manifest::{Manifest, Program, Status};
 pub use outcome::{Outcome, OutcomeSeries, OutcomeValue};
 pub use task::Execute;

@@ -73,13 +73,15 @@ fn sweep(out: &Path, executor: &str, config: Option<&Path>, extra: &[&str]) -> O
 }
 
 /// Eight runs: two time-step safeties on four grids.
-const EIGHT: [&str; 6] = [
+const EIGHT: [&str; 8] = [
     "--vary",
     "grid.spacing=0.05,0.04,0.025,0.02",
     "--vary",
     "time.safety=0.2,0.4",
     "--returns",
     "lower.x_max,upper.kinetic_energy,A.x,B.y,run.steps,run.dt",
+    "--chart",
+    "A.x",
 ];
 
 #[test]
@@ -97,6 +99,7 @@ fn every_executor_gives_the_same_results_bit_for_bit() {
             String::from_utf8_lossy(&o.stderr)
         );
         tables.push(std::fs::read_to_string(out.join("results.csv")).unwrap());
+        assert!(out.join("A.x.png").is_file(), "{executor}: no chart");
     }
     assert_eq!(tables[0].lines().count(), 9, "{}", tables[0]);
     assert!(

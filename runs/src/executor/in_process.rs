@@ -2,7 +2,7 @@
 //! pool of the task's own `threads` when it asks for fewer). Nothing is started anew, so a
 //! task stopped from outside stops the whole process: there is nothing to retry.
 
-use super::{in_rounds, Executor, Progress};
+use super::{in_rounds, BatchState, Executor, Progress};
 use crate::batch::{Batch, TaskReport};
 use crate::description::RunDescription;
 use crate::manifest::Program;
@@ -26,7 +26,12 @@ impl Executor for InProcess<'_> {
                 if stop.load(Ordering::Relaxed) {
                     break;
                 }
-                progress(done, batch.len);
+                progress(&BatchState {
+                    done: batch.len - tasks.len() + done,
+                    all: batch.len,
+                    running: 1,
+                    waiting: tasks.len() - done - 1,
+                });
                 let task = batch.task(i);
                 let asked = RunDescription::read(&task.description()).map_or(0, |d| d.threads);
                 let available = rayon::current_num_threads();
@@ -48,7 +53,12 @@ impl Executor for InProcess<'_> {
                     _ => run(available),
                 }
             }
-            progress(tasks.len(), batch.len);
+            progress(&BatchState {
+                done: batch.len,
+                all: batch.len,
+                running: 0,
+                waiting: 0,
+            });
             Ok(())
         })
     }

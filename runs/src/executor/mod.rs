@@ -19,8 +19,28 @@ use crate::batch::{Batch, TaskReport};
 use anyhow::{bail, Result};
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// Progress of a batch: tasks finished, tasks in all.
-pub type Progress<'a> = &'a (dyn Fn(usize, usize) + Sync);
+/// Where a batch stands: tasks finished, in all, running and waiting (the queue's word for
+/// Slurm, this executor's for the others).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BatchState {
+    pub done: usize,
+    pub all: usize,
+    pub running: usize,
+    pub waiting: usize,
+}
+
+impl std::fmt::Display for BatchState {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}/{} runs finished, {} running, {} waiting",
+            self.done, self.all, self.running, self.waiting
+        )
+    }
+}
+
+/// Progress of a batch, told whenever its state changes (Slurm: at every poll).
+pub type Progress<'a> = &'a (dyn Fn(&BatchState) + Sync);
 
 pub trait Executor {
     /// What runs the tasks, for logs (`in-process, 2 threads`, `slurm partition ci`).

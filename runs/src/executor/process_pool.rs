@@ -10,7 +10,7 @@
 //! this process alone, which then stops every task it started (SIGTERM to its group, so a
 //! run writes its last state) and waits for them.
 
-use super::{in_rounds, Executor, Progress};
+use super::{in_rounds, BatchState, Executor, Progress};
 use crate::batch::{Batch, TaskReport};
 use anyhow::{Context, Result};
 use std::os::unix::process::CommandExt;
@@ -115,7 +115,12 @@ impl Executor for ProcessPool {
                 if running.len() < before {
                     self.give_places(before - running.len());
                     done += before - running.len();
-                    progress(done, batch.len);
+                    progress(&BatchState {
+                        done: batch.len - tasks.len() + done,
+                        all: batch.len,
+                        running: running.len(),
+                        waiting: queue.len(),
+                    });
                 } else {
                     std::thread::sleep(POLL);
                 }

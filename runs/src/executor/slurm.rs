@@ -4,14 +4,14 @@
 //!
 //! whose element i runs `PROGRAM run-one <batch>/task-i/description.toml <batch>/task-i`
 //! on `cpus_per_task` CPUs with `RAYON_NUM_THREADS = SLURM_CPUS_PER_TASK`, its output in
-//! `task-i/log-<job>.txt`. The array's state comes from `squeue` until none of it is
-//! left; what each task did is then read from its files (Slurm forgets finished jobs, and
+//! `task-i/log-<job>.txt`. The array's state comes from `squeue` (one line per element:
+//! running or pending) until none of it is left; what each task did is then read from its files (Slurm forgets finished jobs, and
 //! its accounting may be off). A stop cancels the array with `scancel` and waits until
 //! `squeue` shows none of it.
 //!
 //! The batch folder must be on a file system the compute nodes share (`work_dir`).
 
-use super::{in_rounds, Executor, Progress, SlurmConfig};
+use super::{in_rounds, BatchState, Executor, Progress, SlurmConfig};
 use crate::batch::{Batch, TaskReport};
 use anyhow::{bail, Context, Result};
 use std::path::PathBuf;
@@ -106,7 +106,7 @@ impl Slurm {
             if stop.load(Ordering::Relaxed) {
                 command("scancel", &[id])?;
                 let since = Instant::now();
-                while queued(id)? {
+                while queue_state(id)?.is_some() {
                     if since.elapsed() > CANCEL_WAIT {
                         bail!("job array {id} is still in the queue {CANCEL_WAIT:?} after scancel");
                     }
@@ -114,11 +114,16 @@ impl Slurm {
                 }
                 return Ok(());
             }
-            if !queued(id)? {
+            let Some((running, waiting)) = queue_state(id)? else {
                 return Ok(());
-            }
+            };
             let done = tasks.iter().filter(|&&i| batch.finished(i)).count();
-            progress(done + batch.len - tasks.len(), batch.len);
+            progress(&BatchState {
+                done: done + batch.len - tasks.len(),
+                all: batch.len,
+                running,
+                waiting,
+            });
             std::thread::sleep(poll);
         }
     }
@@ -143,21 +148,28 @@ impl Executor for Slurm {
     }
 }
 
-/// Whether any element of job `id` is still listed by `squeue`. A job Slurm no longer
-/// knows ("Invalid job id") has left the queue.
-fn queued(id: &str) -> Result<bool> {
+/// The elements of job array `id` that `squeue` lists, as (running, waiting) — pending
+/// ones waiting, every other state running —, or `None` once none is listed. A job Slurm
+/// no longer knows ("Invalid job id") has left the queue.
+fn queue_state(id: &str) -> Result<Option<(usize, usize)>> {
     let out = Command::new("squeue")
-        .args(["-h", "-o", "%i", "-j", id])
+        .args(["-h", "-r", "-o", "%t", "-j", id])
         .output()
         .context("cannot run squeue (is Slurm installed and SLURM_CONF set?)")?;
     let stderr = String::from_utf8_lossy(&out.stderr);
     if !out.status.success() {
         if stderr.contains("Invalid job id") {
-            return Ok(false);
+            return Ok(None);
         }
         bail!("squeue -j {id} failed: {}", stderr.trim());
     }
-    Ok(!String::from_utf8_lossy(&out.stdout).trim().is_empty())
+    let states = String::from_utf8_lossy(&out.stdout);
+    let states: Vec<&str> = states.split_whitespace().collect();
+    if states.is_empty() {
+        return Ok(None);
+    }
+    let waiting = states.iter().filter(|s| **s == "PD").count();
+    Ok(Some((states.len() - waiting, waiting)))
 }
 
 /// Run a Slurm command; its standard output, or an error with its standard error.

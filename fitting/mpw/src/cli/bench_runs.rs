@@ -64,7 +64,7 @@ pub fn run(args: Args) -> Result<()> {
         |executor: &dyn Executor, name: &str, runs: usize, threads: usize| -> Result<Timing> {
             let batch = Batch::create(&args.out.join(name), &vec![description(threads); runs])?;
             let start = Instant::now();
-            let reports = executor.run(&batch, &stop, &|_, _| {})?;
+            let reports = executor.run(&batch, &stop, &|_| {})?;
             let wall = start.elapsed().as_secs_f64();
             let mut own = 0.0;
             for r in reports {

@@ -6,7 +6,9 @@
 //! results as `name_unit` columns. The CSV is the same, byte for byte, whichever executor
 //! ran the study.
 //!
-//! A failed task is listed with its log at the end, and the command then fails.
+//! `--chart RESULT` draws a result against the first varied field, one line per value of
+//! the second and per seed. A failed task is listed with its log at the end, and the
+//! command then fails.
 
 use super::executor_args::ExecutorArgs;
 use super::progress::ProgressLine;
@@ -30,6 +32,10 @@ pub struct Args {
     /// The named results to keep (default: all the scene gives).
     #[arg(long, value_delimiter = ',')]
     pub returns: Vec<String>,
+    /// Chart these results (`bar.z_max`, ...) against the first varied field, one line per
+    /// value of the second field and seed: `<result>.png` in the output folder.
+    #[arg(long, value_delimiter = ',')]
+    pub chart: Vec<String>,
     /// Output folder: results.csv, and the runs' folders in tasks/ (Slurm: in the config's
     /// work_dir).
     #[arg(long)]
@@ -90,13 +96,10 @@ pub fn run(args: Args) -> Result<()> {
     );
     let line = ProgressLine::default();
     let start = Instant::now();
-    let reports = executor.run(&batch, &stop, &|done, all| {
+    let reports = executor.run(&batch, &stop, &|state| {
         line.show(
             "sweep",
-            &format!(
-                "{done}/{all} runs finished, {:.1} s",
-                start.elapsed().as_secs_f64()
-            ),
+            &format!("{state}, {:.1} s", start.elapsed().as_secs_f64()),
         )
     })?;
     line.finish();
@@ -108,6 +111,9 @@ pub fn run(args: Args) -> Result<()> {
         table(&varied, seeds.is_some(), &descriptions, &reports)?,
     )
     .with_context(|| format!("cannot write {}", csv.display()))?;
+    for name in &args.chart {
+        chart(name, &varied, &descriptions, &reports, &out)?;
+    }
     summarize(&reports, wall, &csv)
 }
 
@@ -252,6 +258,68 @@ fn table(
         writeln!(text, "{}", row.join(",")).expect("writing to a string");
     }
     Ok(text)
+}
+
+/// The result `name` of every run that gave it against the first varied field, one line
+/// per value of the other coordinates (second field, seed), into `out/<name>.png`.
+fn chart(
+    name: &str,
+    varied: &[Varied],
+    descriptions: &[RunDescription],
+    reports: &[TaskReport],
+    out: &Path,
+) -> Result<()> {
+    let Some(first) = varied.first() else {
+        bail!("--chart {name}: a chart needs a --vary field for its abscissa");
+    };
+    let mut lines: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    let mut unit = String::new();
+    for (d, r) in descriptions.iter().zip(reports) {
+        let Ok((outcome, _)) = &r.result else {
+            continue;
+        };
+        let Some(v) = outcome.values.iter().find(|v| v.name == name) else {
+            bail!("--chart {name}: the runs give no result `{name}`");
+        };
+        unit.clone_from(&v.unit);
+        let x = match &d.set[&first.field] {
+            toml::Value::Float(x) => *x,
+            toml::Value::Integer(i) => *i as f64,
+            other => bail!(
+                "--chart: `{}` = {other} is not a number to chart against",
+                first.field
+            ),
+        };
+        let mut key: Vec<String> = varied[1..]
+            .iter()
+            .map(|v| format!("{} = {}", v.field, d.set[&v.field]))
+            .collect();
+        key.extend(d.seed.map(|s| format!("seed {s}")));
+        let key = key.join(", ");
+        match lines.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, points)) => points.push((x, v.value)),
+            None => lines.push((key, vec![(x, v.value)])),
+        }
+    }
+    let unit = match unit.as_str() {
+        "-" | "" => String::new(),
+        u => format!(" [{u}]"),
+    };
+    let mut c = crate::charts::LineChart::new(
+        format!("sweep: {name}"),
+        first.field.clone(),
+        format!("{name}{unit}"),
+    );
+    for (key, mut points) in lines {
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let label = if key.is_empty() {
+            name.to_string()
+        } else {
+            key
+        };
+        c = c.with(crate::charts::Series { label, points });
+    }
+    c.write_png(&out.join(format!("{name}.png")))
 }
 
 /// A result's column: its name and unit, `bar.z_max_m`, `bar.kinetic_energy_j`,

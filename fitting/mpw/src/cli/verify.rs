@@ -71,7 +71,7 @@ fn table_through(
     );
     let stop = crate::cli::interrupt::interrupt_flag()?;
     let mut rows = Vec::new();
-    for report in executor.run(&batch, &stop, &|_, _| {})? {
+    for report in executor.run(&batch, &stop, &|_| {})? {
         report.result.map_err(|f| anyhow::anyhow!("{f}"))?;
         let file = batch.task(report.index).run().join(ROWS_FILE);
         let text = std::fs::read_to_string(&file)

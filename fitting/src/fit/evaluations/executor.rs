@@ -57,7 +57,7 @@ impl ExecutorEvaluations {
             .map(|r| description(&self.set_file, r))
             .collect();
         let batch = Batch::create(&self.work_dir.join(format!("batch-{k}")), &descriptions)?;
-        let reports = self.executor.run(&batch, &self.stop, &|_, _| {})?;
+        let reports = self.executor.run(&batch, &self.stop, &|_| {})?;
         let mut predictions = Vec::with_capacity(reports.len());
         for (report, request) in reports.into_iter().zip(requests) {
             let name = &request.block.name;

@@ -116,9 +116,7 @@ pub fn map(args: MapArgs) -> Result<()> {
         batch.dir.display()
     );
     let line = ProgressLine::default();
-    let reports = executor.run(&batch, &stop, &|done, all| {
-        line.show("map", &format!("{done}/{all} runs finished"))
-    })?;
+    let reports = executor.run(&batch, &stop, &|state| line.show("map", &state.to_string()))?;
     line.finish();
     for (cell, report) in cells.iter_mut().zip(reports) {
         match report.result {

@@ -75,7 +75,7 @@ pub fn repeat(args: RepeatArgs) -> Result<()> {
             executor.describe(),
             batch.dir.display()
         );
-        let reports = executor.run(&batch, &stop, &|_, _| {})?;
+        let reports = executor.run(&batch, &stop, &|_| {})?;
         for (report, seed) in reports.into_iter().zip(&args.seeds) {
             let (outcome, manifest) = report
                 .result
