@@ -1,12 +1,13 @@
 //! Fits side by side: when a set's evaluations take several fits at once (an executor
-//! whose runs go to a cluster), the starts of a multi-start fit and the refits of a
-//! bootstrap run concurrently. Their results are those of one fit after another, to the
+//! whose runs go to a cluster), the starts of a multi-start fit, the refits of a bootstrap
+//! and the folds of a cross-validation run concurrently. Their results are those of one fit after another, to the
 //! bit.
 
 use fitting::fit::evaluations::{Evaluations, InProcess, Prediction, Request};
 use fitting::fit::optimize::run::{run_fit, FitProgress, Optimizer};
 use fitting::fit::sets::fit_set::FitSet;
 use fitting::fit::statistics::bootstrap::bootstrap;
+use fitting::fit::statistics::cross_validation::leave_one_group_out;
 use std::ops::ControlFlow;
 use std::path::Path;
 use std::sync::Arc;
@@ -79,4 +80,24 @@ fn refits_side_by_side_give_the_bootstrap_of_refits_one_after_another() {
         one.params.iter().any(|p| p.sd > 0.0),
         "a bootstrap with spread"
     );
+}
+
+#[test]
+fn folds_side_by_side_give_the_cross_validation_of_folds_one_after_another() {
+    let go = |_: &FitProgress| ControlFlow::Continue(());
+    let mut set = default_set();
+    set.starts = 1;
+    let fit = run_fit(&set, Optimizer::LmExact, &go).unwrap();
+    let one = leave_one_group_out(&set, &fit.material, &|_, _| {}).unwrap();
+    set.evaluations = Arc::new(ThreeAtOnce);
+    let three = leave_one_group_out(&set, &fit.material, &|_, _| {}).unwrap();
+    assert!(one.len() >= 3, "{} folds", one.len());
+    for (a, b) in one.iter().zip(&three) {
+        assert_eq!(a.left_out, b.left_out);
+        assert_eq!(bits(&a.values), bits(&b.values), "{}", a.left_out);
+        assert_eq!(
+            a.out_of_sample.rms_vs_mean.to_bits(),
+            b.out_of_sample.rms_vs_mean.to_bits()
+        );
+    }
 }

@@ -11,6 +11,7 @@ use crate::fit::optimize::run::refit;
 use crate::fit::sets::fit_set::FitSet;
 use crate::fit::statistics::scatter::{groups, scatter, Scatter};
 use anyhow::Result;
+use rayon::prelude::*;
 
 /// One fold: the group left out, the parameters fitted without it and its scatter
 /// against their predictions.
@@ -25,11 +26,12 @@ pub struct Fold {
     pub out_of_sample: Scatter,
 }
 
-/// Every fold of `set`; `fitted` is the material of the fit on all records.
+/// Every fold of `set`; `fitted` is the material of the fit on all records. Folds run side
+/// by side when the set's evaluations take several fits at once, with the same results.
 pub fn leave_one_group_out(
     set: &FitSet,
     fitted: &Material,
-    progress: &dyn Fn(usize, &str),
+    progress: &(dyn Fn(usize, &str) + Sync),
 ) -> Result<Vec<Fold>> {
     let blocks: Vec<&Block> = set.blocks.iter().collect();
     let names: Vec<&str> = set.params.iter().map(|p| p.name.as_str()).collect();
@@ -42,8 +44,8 @@ pub fn leave_one_group_out(
         groups.len() >= 2,
         "leave-one-group-out needs at least two groups"
     );
-    let mut folds = Vec::new();
-    for (k, g) in groups.iter().enumerate() {
+    let fold = |k: usize| -> Result<Fold> {
+        let g = &groups[k];
         progress(k, &g.label);
         let kept: Vec<&Block> = (0..blocks.len())
             .filter(|i| !g.members.contains(i))
@@ -55,13 +57,25 @@ pub fn leave_one_group_out(
             &blocks,
             &predict(set.evaluations.as_ref(), &blocks, &material)?,
         );
-        folds.push(Fold {
+        Ok(Fold {
             left_out: g.label.clone(),
             values: r.values,
             converged: r.converged,
             in_sample: all[k].clone(),
             out_of_sample: out[k].clone(),
-        });
-    }
+        })
+    };
+    let folds = match set.evaluations.fits_at_once().min(groups.len()) {
+        0 | 1 => (0..groups.len()).map(fold).collect::<Result<Vec<_>>>()?,
+        k => rayon::ThreadPoolBuilder::new()
+            .num_threads(k)
+            .build()?
+            .install(|| {
+                (0..groups.len())
+                    .into_par_iter()
+                    .map(fold)
+                    .collect::<Result<Vec<_>>>()
+            })?,
+    };
     Ok(folds)
 }
