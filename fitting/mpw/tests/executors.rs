@@ -393,3 +393,36 @@ fn a_verification_part_as_a_task_gives_the_rows_in_process() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Seeds set the grid-shift sequence: two seeds move the results, the same seed repeats
+/// them to the bit; a scene without a shift is refused, its seed would change nothing.
+#[test]
+fn seeds_move_a_shifted_grid_and_repeat_to_the_bit() {
+    let dir = temp("seeds");
+    let args = [
+        "--vary",
+        "grid.shift=[0.01,0.01]",
+        "--seeds",
+        "1,2,1",
+        "--returns",
+        "A.x",
+    ];
+    let o = sweep(&dir.join("shifted"), "pool", None, &args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let table = std::fs::read_to_string(dir.join("shifted/results.csv")).unwrap();
+    let ax: Vec<&str> = table
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap())
+        .collect();
+    assert_eq!(ax.len(), 3, "{table}");
+    assert_ne!(ax[0], ax[1], "seeds 1 and 2 gave the same run: {table}");
+    assert_eq!(ax[0], ax[2], "seed 1 twice differs: {table}");
+    let o = sweep(&dir.join("plain"), "in-process", None, &["--seeds", "1,2"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && stderr.contains("has no grid.shift"),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -78,7 +78,14 @@ pub fn run(args: Args) -> Result<()> {
     let descriptions = descriptions(&scene, &varied, seeds.as_deref(), &args.returns);
     // every description is checked here, so that a typo fails before anything is queued
     for d in &descriptions {
-        crate::tasks::changed_scene(d)?;
+        let changed = crate::tasks::changed_scene(d)?;
+        let shifted = changed.get("grid").and_then(|g| g.get("shift")).is_some();
+        if d.seed.is_some() && !shifted {
+            bail!(
+                "--seeds: {} has no grid.shift, so its seed (grid.seed, the shift sequence) changes nothing; give the scene a [grid] shift or --vary grid.shift=...",
+                scene.display()
+            );
+        }
     }
     let stop = super::interrupt::interrupt_flag()?;
     let execute = |d: &RunDescription, dir: &Path| crate::tasks::execute(d, dir, Some(&stop));
