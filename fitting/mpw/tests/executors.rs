@@ -110,7 +110,12 @@ fn every_executor_gives_the_same_results_bit_for_bit() {
     assert_eq!(tables[0], tables[1], "in-process and pool differ");
     assert_eq!(tables[0], tables[2], "in-process and Slurm differ");
     // a Slurm task ran on the one CPU it was given, and names its description
-    let task = dir.join("slurm-work/mpw-sweep-colliding_disks/task-3");
+    let batch = std::fs::read_dir(dir.join("slurm-work"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.to_string_lossy().contains("mpw-sweep-colliding_disks-"))
+        .expect("the sweep's folder under work_dir, named with its process id");
+    let task = batch.join("task-3");
     let manifest: toml::Table =
         toml::from_str(&std::fs::read_to_string(task.join("manifest.toml")).unwrap()).unwrap();
     assert_eq!(manifest["threads"].as_integer(), Some(1));
@@ -212,16 +217,19 @@ fn a_stopped_sweep_leaves_no_task_running() {
     for executor in ["pool", "slurm"] {
         let out = dir.join(executor);
         let config = (executor == "slurm").then_some(config.as_path());
-        let batch = match executor {
-            "slurm" => dir.join("slurm-work/mpw-sweep-colliding_disks"),
-            _ => out.join("tasks"),
-        };
-        let batch = batch.display().to_string();
         let mut child = sweep_command(&out, executor, config, &LONG)
             .stdout(Stdio::null())
             .stderr(Stdio::piped())
             .spawn()
             .unwrap();
+        let batch = match executor {
+            "slurm" => dir.join(format!(
+                "slurm-work/mpw-sweep-colliding_disks-{}",
+                child.id()
+            )),
+            _ => out.join("tasks"),
+        };
+        let batch = batch.display().to_string();
         wait_for("two tasks under way", Duration::from_secs(120), || {
             processes_with(&format!("run-one {batch}/task-")).len() >= 2
         });

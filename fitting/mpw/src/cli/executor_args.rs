@@ -33,7 +33,7 @@ pub struct ExecutorArgs {
 
 impl ExecutorArgs {
     /// The subprocess executor asked for (`None`: in process) and the folder its batches
-    /// go to: `local_dir`, or `job_name` under Slurm's shared `work_dir`.
+    /// go to: `local_dir`, or `<job_name>-<process id>` under Slurm's shared `work_dir`.
     pub fn subprocesses(
         &self,
         job_name: &str,
@@ -55,7 +55,10 @@ impl ExecutorArgs {
                     bail!("--executor slurm needs --slurm CONFIG (a TOML file: work_dir, time_limit, max_running, ...)");
                 };
                 let config = SlurmConfig::read(path)?;
-                let dir = config.work_dir.join(job_name);
+                // this process's own folder: two commands on one work_dir never share one
+                let dir = config
+                    .work_dir
+                    .join(format!("{job_name}-{}", std::process::id()));
                 Some((Box::new(Slurm::new(config, this, job_name)), dir))
             }
         })
