@@ -207,3 +207,44 @@ fn a_failed_cut_says_where_and_at_what_feed() {
         "{line}"
     );
 }
+
+/// Two orthogonal cuts that differ only in depth or friction get default folders of their
+/// own, so that one does not overwrite the other.
+#[test]
+fn orthogonal_cuts_of_other_depth_or_friction_get_their_own_folders() {
+    let dir = std::env::temp_dir().join(format!("mpw-cut-orthogonal-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let material = root().join("data/materials/42crmo4_qt660.toml");
+    for (depth, friction) in [("0.1e-3", "0"), ("0.3e-3", "0"), ("0.1e-3", "0.2")] {
+        let out = Command::new(env!("CARGO_BIN_EXE_mpw"))
+            .current_dir(&dir)
+            .args([
+                "cut",
+                "orthogonal",
+                "--spacing",
+                "2e-4",
+                "--points",
+                "30",
+                "--end",
+                "2e-6",
+            ])
+            .args(["--depth", depth, "--friction", friction, "--material"])
+            .arg(&material)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    for folder in [
+        "cut_orthogonal_dx0.0002_ny30_h0.1mm",
+        "cut_orthogonal_dx0.0002_ny30_h0.3mm",
+        "cut_orthogonal_dx0.0002_ny30_h0.1mm_mu0.2",
+    ] {
+        let scene = dir.join("out").join(folder).join("scene.toml");
+        assert!(scene.is_file(), "{} missing", scene.display());
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -58,7 +58,17 @@ pub fn orthogonal(args: OrthogonalArgs) -> Result<()> {
         spacing: args.spacing,
         points_y: args.points,
     };
-    let name = format!("dx{}_ny{}", args.spacing, args.points);
+    // every option that changes the run names it, so that the default folders of two
+    // different runs never coincide
+    let mut name = format!(
+        "dx{}_ny{}_h{}mm",
+        args.spacing,
+        args.points,
+        (args.depth * 1e6).round() / 1e3
+    );
+    if args.friction != 0.0 {
+        name += &format!("_mu{}", args.friction);
+    }
     let out = (args.common.out.clone())
         .unwrap_or_else(|| Path::new("out").join(format!("cut_orthogonal_{name}")));
     let options = args.common.options(&args.material)?;
