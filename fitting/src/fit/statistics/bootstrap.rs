@@ -57,6 +57,14 @@ pub struct Bootstrap {
     pub wall_s: f64,
 }
 
+/// One resample's refit: its values, its model's mean curve of each group, and whether it
+/// converged.
+struct Refitted {
+    values: Vec<f64>,
+    curves: Vec<Vec<f64>>,
+    converged: bool,
+}
+
 /// Percentile q ∈ [0, 1] of sorted values (linear between order statistics).
 pub fn percentile(sorted: &[f64], q: f64) -> f64 {
     let h = q * (sorted.len() - 1) as f64;
@@ -96,9 +104,8 @@ pub fn bootstrap(
         &blocks,
         &predict(set.evaluations.as_ref(), &blocks, material)?,
     );
-    // one resample's refit: its values, its model's mean curves and whether it converged;
-    // `None` when the refit failed
-    let sample = |b: usize| -> Result<Option<(Vec<f64>, Vec<Vec<f64>>, bool)>> {
+    // one resample's refit; `None` when the refit failed
+    let sample = |b: usize| -> Result<Option<Refitted>> {
         let mut rng = Pcg64::new(set.seed as u128, b as u128);
         let drawn = resample(&blocks, &mut rng);
         let refitted = match refit(set, *material, drawn, Some(&optimum)) {
@@ -110,7 +117,11 @@ pub fn bootstrap(
                     .iter()
                     .map(|g| model_mean(&blocks, &g.group, &g.strain, &p))
                     .collect();
-                Some((r.values, mean_curves, r.converged))
+                Some(Refitted {
+                    values: r.values,
+                    curves: mean_curves,
+                    converged: r.converged,
+                })
             }
             Err(e) => {
                 eprintln!("bootstrap sample {b}: refit failed: {e:#}");
@@ -120,8 +131,7 @@ pub fn bootstrap(
         progress(b);
         Ok(refitted)
     };
-    let refits: Vec<Option<(Vec<f64>, Vec<Vec<f64>>, bool)>> = match set.evaluations.fits_at_once()
-    {
+    let refits: Vec<Option<Refitted>> = match set.evaluations.fits_at_once() {
         1 => (0..samples).map(sample).collect::<Result<_>>()?,
         k => rayon::ThreadPoolBuilder::new()
             .num_threads(k)
@@ -137,10 +147,10 @@ pub fn bootstrap(
     let (mut not_converged, mut failed) = (0, 0);
     for refitted in refits {
         match refitted {
-            Some((v, c, converged)) => {
-                not_converged += usize::from(!converged);
-                values.push(v);
-                curves.push(c);
+            Some(r) => {
+                not_converged += usize::from(!r.converged);
+                values.push(r.values);
+                curves.push(r.curves);
             }
             None => failed += 1,
         }
