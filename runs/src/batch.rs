@@ -74,11 +74,6 @@ impl Batch {
         self.task(index).manifest().is_file()
     }
 
-    /// Whether task `index` finished as a failure of its own (it would fail again).
-    pub fn failed_for_good(&self, index: usize) -> bool {
-        Manifest::read(&self.task(index).manifest()).is_ok_and(|m| m.status == Status::Failed)
-    }
-
     /// The report of task `index` after `attempts` starts.
     pub fn report(&self, index: usize, attempts: usize) -> TaskReport {
         let task = self.task(index);

@@ -6,7 +6,7 @@
 //! kind = "scene"                    # what the program runs (mpw: an MPM scene file)
 //! input = "/shared/scenes/taylor_bar_axisymmetric.toml"   # relative: to this file's folder
 //! seed = 3                          # optional: the input's random choices (mpw scenes: grid.seed)
-//! threads = 1                       # 0: as many as the executor gives the task
+//! threads = 1                       # at most this many of the executor's threads (0: all)
 //! returns = ["bar.z_max"]           # named results to keep; empty: all
 //! [set]                             # changes to the input, by field path
 //! "grid.spacing" = 5e-4

@@ -36,24 +36,36 @@ impl TaskDir {
     }
 }
 
-/// Run the description at `description` into the task folder `dir` on `threads` threads
-/// (those of the calling pool): the outcome, then the manifest. A task error is written
-/// into the manifest (status `failed`) and returned as well.
+/// Run the description at `description` into the task folder `dir`: the outcome, then the
+/// manifest. The run gets the calling pool's threads, or the description's `threads` when
+/// it asks for fewer. A task error is written into the manifest (status `failed`) and
+/// returned as well.
 pub fn run_one(
     program: Program,
     description: &Path,
     dir: &Path,
-    threads: usize,
     execute: Execute,
 ) -> Result<Manifest> {
     let task = TaskDir(dir.to_path_buf());
     std::fs::create_dir_all(task.run())?;
     let start = Instant::now();
     let read = RunDescription::read(description);
+    let available = rayon::current_num_threads();
+    let threads = match read.as_ref().map(|d| d.threads) {
+        Ok(asked) if asked > 0 && asked < available => asked,
+        _ => available,
+    };
+    let run = |d: &RunDescription| execute(d, &task.run())?.keep(&d.returns);
     let result = read
         .as_ref()
         .map_err(|e| anyhow::anyhow!("{e:#}"))
-        .and_then(|d| execute(d, &task.run())?.keep(&d.returns))
+        .and_then(|d| match threads < available {
+            true => rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()?
+                .install(|| run(d)),
+            false => run(d),
+        })
         .and_then(|outcome| outcome.write(&task.outcome()));
     let manifest = Manifest {
         program: format!("{} {}", program.name, program.version),
@@ -70,8 +82,5 @@ pub fn run_one(
         message: result.as_ref().err().map(|e| format!("{e:#}")),
     };
     manifest.write(&task.manifest())?;
-    match result {
-        Ok(()) => Ok(manifest),
-        Err(e) => Err(e),
-    }
+    result.map(|()| manifest)
 }

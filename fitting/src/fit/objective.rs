@@ -321,20 +321,19 @@ impl Objective<'_> {
         let mut points = Vec::with_capacity(self.blocks.len());
         let mut requests = Vec::new();
         for &block in &self.blocks {
-            let p = match own(block) {
-                true => Vec::new(),
-                false => fd_points(material, names, block.model.fd_step())?,
-            };
-            if !own(block) {
-                requests.push(Request {
-                    block,
-                    material: *material,
-                });
-                requests.extend(p.iter().map(|(m, _)| Request {
-                    block,
-                    material: *m,
-                }));
+            if own(block) {
+                points.push(Vec::new());
+                continue;
             }
+            let p = fd_points(material, names, block.model.fd_step())?;
+            requests.push(Request {
+                block,
+                material: *material,
+            });
+            requests.extend(p.iter().map(|(m, _)| Request {
+                block,
+                material: *m,
+            }));
             points.push(p);
         }
         let mut predicted = self

@@ -1,10 +1,9 @@
-//! The in-process executor: one task after another on this process's threads (or on a
-//! pool of the task's own `threads` when it asks for fewer). Nothing is started anew, so a
+//! The in-process executor: one task after another on this process's threads (fewer when
+//! a task's description asks for fewer, `task::run_one`). Nothing is started anew, so a
 //! task stopped from outside stops the whole process: there is nothing to retry.
 
 use super::{in_rounds, BatchState, Executor, Progress};
 use crate::batch::{Batch, TaskReport};
-use crate::description::RunDescription;
 use crate::manifest::Program;
 use crate::task::{run_one, Execute};
 use anyhow::Result;
@@ -33,25 +32,8 @@ impl Executor for InProcess<'_> {
                     waiting: tasks.len() - done - 1,
                 });
                 let task = batch.task(i);
-                let asked = RunDescription::read(&task.description()).map_or(0, |d| d.threads);
-                let available = rayon::current_num_threads();
-                let run = |threads| {
-                    // a task error is in its manifest, which the report reads
-                    let _ = run_one(
-                        self.program,
-                        &task.description(),
-                        &task.0,
-                        threads,
-                        self.execute,
-                    );
-                };
-                match asked {
-                    t if t > 0 && t < available => rayon::ThreadPoolBuilder::new()
-                        .num_threads(t)
-                        .build()?
-                        .install(|| run(t)),
-                    _ => run(available),
-                }
+                // a task error is in its manifest, which the report reads
+                let _ = run_one(self.program, &task.description(), &task.0, self.execute);
             }
             progress(&BatchState {
                 done: batch.len,

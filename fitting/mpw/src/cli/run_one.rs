@@ -29,8 +29,7 @@ pub fn program() -> runs::Program<'static> {
 pub fn run(args: Args) -> Result<()> {
     let execute =
         |d: &runs::RunDescription, dir: &std::path::Path| crate::tasks::execute(d, dir, None);
-    let threads = rayon::current_num_threads();
-    let manifest = runs::task::run_one(program(), &args.description, &args.dir, threads, &execute)?;
+    let manifest = runs::task::run_one(program(), &args.description, &args.dir, &execute)?;
     println!(
         "{}: done in {:.3} s on {} thread(s)",
         args.dir.display(),
