@@ -115,9 +115,10 @@ impl Units {
             Quantity::Density => (self.density, self.density_unit),
             Quantity::Rate => (self.rate, self.rate_unit),
             Quantity::SpecificHeat => (self.specific_heat, self.specific_heat_unit),
-            Quantity::Temperature | Quantity::Dimensionless | Quantity::ThermalExpansion => {
-                (1.0, quantity.si_unit())
-            }
+            Quantity::Temperature
+            | Quantity::Dimensionless
+            | Quantity::ThermalExpansion
+            | Quantity::InverseTemperature => (1.0, quantity.si_unit()),
         }
     }
 }
@@ -130,6 +131,12 @@ pub fn value(m: &Material, name: &str, units: &Units) -> Result<(f64, &'static s
     else {
         bail!("`{name}` is not an exported parameter");
     };
+    if m.flow.as_johnson_cook().is_none() {
+        bail!(
+            "the flow-stress law is {}, not Johnson-Cook: a Johnson-Cook card cannot carry it",
+            m.flow.describe()
+        );
+    }
     let Some(si) = m.param(name) else {
         bail!("the material has no parameter `{name}` (a Johnson-Cook model is needed)");
     };

@@ -2,12 +2,24 @@
 //!
 //! ```toml
 //! name = "AISI 4340"
-//! model = "johnson-cook"          # "neo-hooke" | "j2" | "johnson-cook"
+//! model = "johnson-cook"          # "neo-hooke" | "j2" | "johnson-cook" | "composed"
 //! return_map = "principal"        # optional: "principal" (default) | "reference"
 //! [elastic]      # E [Pa], nu [-], rho [kg/m³]
 //! [johnson_cook] # A, B [Pa], N, C, M [-], alpha_dot0 [1/s], theta_m [K]
 //! [voce]         # (j2) tau0, tau_inf, h [Pa], eta [-]
-//! [thermal]      # (johnson-cook) theta0 [K], c_theta [J/(kg K)], alpha_sigma [1/K], gamma_tq [-]
+//! [thermal]      # (johnson-cook, composed) theta0 [K], c_theta [J/(kg K)], alpha_sigma [1/K],
+//!                #   gamma_tq [-]
+//! ```
+//! A composed flow-stress law (`flow_stress::composed`) names each factor's law in its
+//! section, beside that law's parameters:
+//! ```toml
+//! model = "composed"
+//! [hardening]    # law = "power" (A, B, N) | "voce" (tau0, tau_inf, eta, h)
+//!                #   | "power-voce" (A, B, N, Q [Pa], beta [-])
+//! [rate]         # law = "none" | "johnson-cook" (C, alpha_dot0) | "huh-kang" (C, C2,
+//!                #   alpha_dot0) | "cowper-symonds" (D_cs [1/s], p_cs [-])
+//! [softening]    # law = "none" | "johnson-cook" (M, theta_m) | "exponential"
+//!                #   (lambda_theta [1/K], theta_m [K])
 //! ```
 //! An unknown or missing key, a value out of range, or a wrong type is an error in the
 //! common format of input files (`toml_place`): `file:line:column: `field`: problem`, at the
@@ -15,7 +27,10 @@
 
 use crate::any_model::AnyModel;
 use crate::elastic::Elastic;
-use crate::flow_stress::{FlowStress, JohnsonCookLaw, Voce};
+use crate::flow_stress::{
+    hardening, rate, softening, Composed, FlowStress, Hardening, JohnsonCookLaw, RateSensitivity,
+    ThermalSoftening, Voce,
+};
 use crate::neo_hooke::NeoHooke;
 use crate::parameters::{accepted, Range};
 use crate::plasticity::{ElastoPlastic, ReturnMap, Thermal};
@@ -114,6 +129,17 @@ impl Reader<'_> {
         section: &str,
         spec: [(&str, Range); K],
     ) -> Result<[f64; K], ParamFileError> {
+        let values = self.values(table, section, &spec)?;
+        Ok(values.try_into().expect("one value per key"))
+    }
+
+    /// `numbers` for a list of keys.
+    fn values(
+        &self,
+        table: &Table,
+        section: &str,
+        spec: &[(&str, Range)],
+    ) -> Result<Vec<f64>, ParamFileError> {
         for key in table.keys() {
             if !spec.iter().any(|(k, _)| k == key) {
                 let allowed: Vec<&str> = spec.iter().map(|(k, _)| *k).collect();
@@ -123,7 +149,7 @@ impl Reader<'_> {
                 ));
             }
         }
-        let mut out = [0.0; K];
+        let mut out = vec![0.0; spec.len()];
         for (slot, (key, range)) in out.iter_mut().zip(spec.iter()) {
             let field = format!("{section}.{key}");
             let v = match table.get(*key) {
@@ -156,6 +182,94 @@ impl Reader<'_> {
         Ok(out)
     }
 
+    /// What a file may give `name`; θm must besides lie above the file's θ0.
+    fn accepted_above(name: &str, theta0: f64) -> Range {
+        if name == "theta_m" {
+            Range {
+                lo: theta0,
+                lo_open: true,
+                hint: "the melting temperature in K, above theta0",
+                ..accepted(name)
+            }
+        } else {
+            accepted(name)
+        }
+    }
+
+    /// The `[johnson_cook]` section: eq. 4.52.
+    fn johnson_cook(&self, root: &Table, theta0: f64) -> Result<FlowStress, ParamFileError> {
+        let [a, b, n, c, m, alpha_dot0, theta_m] = self.numbers(
+            self.section(root, "johnson_cook")?,
+            "johnson_cook",
+            ["A", "B", "N", "C", "M", "alpha_dot0", "theta_m"]
+                .map(|n| (n, Self::accepted_above(n, theta0))),
+        )?;
+        Ok(FlowStress::JohnsonCook(JohnsonCookLaw {
+            a,
+            b,
+            n,
+            c,
+            m,
+            alpha_dot0,
+            theta_m,
+        }))
+    }
+
+    /// The `[hardening]`, `[rate]` and `[softening]` sections of a composed law.
+    fn composed(&self, root: &Table, theta0: f64) -> Result<Composed, ParamFileError> {
+        let (law, values) = self.factor(root, "hardening", &hardening::KEYWORDS, theta0, |k| {
+            Hardening::names_of(k)
+        })?;
+        let hardening = Hardening::from_keyword(law, |n| values(n)).expect("a known law");
+        let (law, values) = self.factor(root, "rate", &rate::KEYWORDS, theta0, |k| {
+            RateSensitivity::names_of(k)
+        })?;
+        let rate = RateSensitivity::from_keyword(law, |n| values(n)).expect("a known law");
+        let (law, values) = self.factor(root, "softening", &softening::KEYWORDS, theta0, |k| {
+            ThermalSoftening::names_of(k)
+        })?;
+        let softening = ThermalSoftening::from_keyword(law, |n| values(n)).expect("a known law");
+        Ok(Composed {
+            hardening,
+            rate,
+            softening,
+        })
+    }
+
+    /// One factor's section: its `law` (one of `keywords`) and that law's parameters, each
+    /// in its accepted range.
+    fn factor<'t>(
+        &self,
+        root: &'t Table,
+        section: &str,
+        keywords: &[&str],
+        theta0: f64,
+        names_of: impl Fn(&str) -> Option<&'static [&'static str]>,
+    ) -> Result<(&'t str, impl Fn(&str) -> f64), ParamFileError> {
+        let table = self.section(root, section)?;
+        let field = format!("{section}.law");
+        let expected = format!("expected one of \"{}\"", keywords.join("\", \""));
+        let law = match table.get("law") {
+            Some(Value::String(law)) => law.as_str(),
+            Some(_) => return Err(self.err(field, format!("{expected} (a string)"))),
+            None => return Err(self.err(field, format!("missing; {expected}"))),
+        };
+        let names = names_of(law)
+            .ok_or_else(|| self.err(&field, format!("unknown law \"{law}\"; {expected}")))?;
+        let mut parameters = table.clone();
+        parameters.remove("law");
+        let spec: Vec<(&str, Range)> = (names.iter())
+            .map(|&n| (n, Self::accepted_above(n, theta0)))
+            .collect();
+        let values = self.values(&parameters, section, &spec)?;
+        Ok((law, move |name: &str| {
+            values[names
+                .iter()
+                .position(|n| *n == name)
+                .expect("a name of the law")]
+        }))
+    }
+
     fn string<'t>(&self, root: &'t Table, key: &str) -> Result<Option<&'t str>, ParamFileError> {
         match root.get(key) {
             Some(Value::String(s)) => Ok(Some(s)),
@@ -176,7 +290,7 @@ pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFile
     let model_kind = r.string(&root, "model")?.ok_or_else(|| {
         r.err(
             "model",
-            "missing; expected \"neo-hooke\", \"j2\" or \"johnson-cook\"",
+            "missing; expected \"neo-hooke\", \"j2\", \"johnson-cook\" or \"composed\"",
         )
     })?;
     let allowed_top: &[&str] = match model_kind {
@@ -190,11 +304,21 @@ pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFile
             "johnson_cook",
             "thermal",
         ],
+        "composed" => &[
+            "name",
+            "model",
+            "return_map",
+            "elastic",
+            "hardening",
+            "rate",
+            "softening",
+            "thermal",
+        ],
         other => {
             return Err(r.err(
                 "model",
                 format!(
-                    "unknown model \"{other}\"; expected \"neo-hooke\", \"j2\" or \"johnson-cook\""
+                    "unknown model \"{other}\"; expected \"neo-hooke\", \"j2\", \"johnson-cook\" or \"composed\""
                 ),
             ))
         }
@@ -211,7 +335,7 @@ pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFile
         }
     }
     let name = r.string(&root, "name")?.unwrap_or("unnamed").to_string();
-    let metal = model_kind == "johnson-cook";
+    let metal = matches!(model_kind, "johnson-cook" | "composed");
     let (e_range, rho_range) = if metal {
         (accepted("E"), accepted("rho"))
     } else {
@@ -267,38 +391,14 @@ pub fn parse_material(text: &str, file: &Path) -> Result<MaterialFile, ParamFile
                 "thermal",
                 ["theta0", "c_theta", "alpha_sigma", "gamma_tq"].map(|n| (n, accepted(n))),
             )?;
-            let [a, b, n, c, m, alpha_dot0, theta_m] = r.numbers(
-                r.section(&root, "johnson_cook")?,
-                "johnson_cook",
-                [
-                    ("A", accepted("A")),
-                    ("B", accepted("B")),
-                    ("N", accepted("N")),
-                    ("C", accepted("C")),
-                    ("M", accepted("M")),
-                    ("alpha_dot0", accepted("alpha_dot0")),
-                    (
-                        "theta_m",
-                        Range {
-                            lo: theta0,
-                            lo_open: true,
-                            hint: "the melting temperature in K, above theta0",
-                            ..accepted("theta_m")
-                        },
-                    ),
-                ],
-            )?;
+            let flow = if model_kind == "composed" {
+                FlowStress::Composed(r.composed(&root, theta0)?)
+            } else {
+                r.johnson_cook(&root, theta0)?
+            };
             AnyModel::ElastoPlastic(ElastoPlastic {
                 elastic,
-                flow: FlowStress::JohnsonCook(JohnsonCookLaw {
-                    a,
-                    b,
-                    n,
-                    c,
-                    m,
-                    alpha_dot0,
-                    theta_m,
-                }),
+                flow,
                 thermal: Thermal {
                     theta0,
                     c_theta,

@@ -14,6 +14,7 @@ pub enum Quantity {
     SpecificHeat,
     Temperature,
     ThermalExpansion,
+    InverseTemperature,
 }
 
 impl Quantity {
@@ -26,7 +27,7 @@ impl Quantity {
             Quantity::Rate => "1/s",
             Quantity::SpecificHeat => "J/(kg K)",
             Quantity::Temperature => "K",
-            Quantity::ThermalExpansion => "1/K",
+            Quantity::ThermalExpansion | Quantity::InverseTemperature => "1/K",
         }
     }
 }
@@ -59,8 +60,11 @@ const fn entry(
 use Quantity::*;
 
 /// Every parameter of every model (Neo-Hooke: elastic; J2: elastic, voce; Johnson-Cook:
-/// elastic, johnson_cook, thermal).
-pub const TABLE: [Parameter; 18] = [
+/// elastic, johnson_cook, thermal). A composed law (`flow_stress::composed`) takes its
+/// factors' parameters from the same entries (the JC and Voce names among them) but reads
+/// each in the section of its factor (`hardening`, `rate`, `softening`); the entries only
+/// composed laws have stand in that section here.
+pub const TABLE: [Parameter; 24] = [
     entry(
         "E",
         "elastic",
@@ -111,6 +115,30 @@ pub const TABLE: [Parameter; 18] = [
     entry("M", "johnson_cook", Dimensionless, Range::positive()),
     entry("alpha_dot0", "johnson_cook", Rate, Range::positive()),
     entry("theta_m", "johnson_cook", Temperature, Range::positive()),
+    entry(
+        "Q",
+        "hardening",
+        Stress,
+        Range::plausible(
+            0.0,
+            1e10,
+            "a saturating hardening in Pa, e.g. 2e8 for 200 MPa (MPa given?)",
+        ),
+    ),
+    entry("beta", "hardening", Dimensionless, Range::non_negative()),
+    entry("C2", "rate", Dimensionless, Range::non_negative()),
+    entry("D_cs", "rate", Rate, Range::positive()),
+    entry("p_cs", "rate", Dimensionless, Range::positive()),
+    entry(
+        "lambda_theta",
+        "softening",
+        InverseTemperature,
+        Range::plausible(
+            0.0,
+            0.1,
+            "a softening coefficient in 1/K, e.g. 1e-3 (per °C is the same; per K given?)",
+        ),
+    ),
     entry("theta0", "thermal", Temperature, Range::positive()),
     entry("c_theta", "thermal", SpecificHeat, Range::positive()),
     entry(
@@ -231,6 +259,9 @@ mod tests {
     #[test]
     fn the_table_holds_every_model_parameter_once() {
         use crate::elastic::Elastic;
+        use crate::flow_stress::hardening::{Power, PowerVoce};
+        use crate::flow_stress::rate::{CowperSymonds, HuhKang, LogRate};
+        use crate::flow_stress::softening::{ExponentialSoftening, JcSoftening};
         use crate::flow_stress::{JohnsonCookLaw, Voce};
         use crate::plasticity::Thermal;
         let mut names: Vec<&str> = [
@@ -238,8 +269,17 @@ mod tests {
             Voce::<f64>::NAMES,
             JohnsonCookLaw::<f64>::NAMES,
             Thermal::<f64>::NAMES,
+            Power::<f64>::NAMES,
+            PowerVoce::<f64>::NAMES,
+            LogRate::<f64>::NAMES,
+            HuhKang::<f64>::NAMES,
+            CowperSymonds::<f64>::NAMES,
+            JcSoftening::<f64>::NAMES,
+            ExponentialSoftening::<f64>::NAMES,
         ]
         .concat();
+        names.sort_unstable();
+        names.dedup();
         let mut table: Vec<&str> = TABLE.iter().map(|p| p.name).collect();
         names.sort_unstable();
         table.sort_unstable();

@@ -5,7 +5,7 @@
 //! parameter derivatives next to state derivatives).
 
 /// Declares a parameter struct `Name<D = f64>` with one named field per parameter, plus
-/// `NAMES`, `map` (convert or seed each value by name), `get` and `set`.
+/// `NAMES`, `map` (convert or seed each value by name), `from_names`, `get` and `set`.
 #[macro_export]
 macro_rules! parameter_set {
     ($(#[$doc:meta])* $name:ident { $($(#[$fdoc:meta])* $field:ident => $key:literal),* $(,)? }) => {
@@ -22,6 +22,11 @@ macro_rules! parameter_set {
             /// Apply `f(name, value)` to every parameter.
             pub fn map<E>(&self, mut f: impl FnMut(&'static str, D) -> E) -> $name<E> {
                 $name { $($field: f($key, self.$field),)* }
+            }
+
+            /// The set with each parameter `value(name)`.
+            pub fn from_names(value: impl Fn(&'static str) -> D) -> Self {
+                $name { $($field: value($key),)* }
             }
 
             pub fn get(&self, key: &str) -> Option<D> {

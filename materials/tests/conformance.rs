@@ -4,7 +4,8 @@
 //! so that every term of eq. 4.51 is exercised.
 
 use materials::conformance::{self as c, BOUND_DERIVATIVE};
-use materials::flow_stress::{FlowStress, Voce};
+use materials::flow_stress::softening::ExponentialSoftening;
+use materials::flow_stress::{FlowStress, ThermalSoftening, Voce};
 use materials::{load_material, AnyModel, ElastoPlastic, Model, ReturnMap};
 use std::path::PathBuf;
 
@@ -119,14 +120,49 @@ fn johnson_cook_follows_eq_4_52_and_its_path_derivatives_the_differences() {
         if !matches!(m.flow, FlowStress::JohnsonCook(_)) {
             continue;
         }
-        for (rate, theta) in c::uniaxial_conditions(&m) {
-            let e = c::uniaxial_flow_error(&m, rate, theta);
-            assert!(
-                e <= c::BOUND_UNIAXIAL,
-                "{name} at {rate} 1/s, {theta} K: {e:e}"
-            );
-        }
-        let (e, worst) = c::path_sensitivity_error(&m, &["A", "B", "N", "C", "M", "gamma_tq"]);
-        assert!(e <= BOUND_DERIVATIVE, "{name}: path dσ/d{worst} {e:e}");
+        assert_flow_and_path_derivatives(&name, &m, &["A", "B", "N", "C", "M", "gamma_tq"]);
     }
+}
+
+/// Every composed law (shipped, and the factors no shipped file uses) follows its own
+/// τ_y(α, α̇, θ) in uniaxial flow, and its whole-path sensitivities to each of its flow
+/// parameters and γ_TQ match fourth-order differences.
+#[test]
+fn composed_laws_follow_their_flow_stress_and_its_path_derivatives_the_differences() {
+    let mut laws: Vec<(String, ElastoPlastic)> = (shipped().into_iter())
+        .filter_map(|(name, model)| match model {
+            AnyModel::ElastoPlastic(m) if matches!(m.flow, FlowStress::Composed(_)) => {
+                Some((name, m))
+            }
+            _ => None,
+        })
+        .collect();
+    assert!(laws.len() >= 3, "{} shipped composed laws", laws.len());
+    let mut exponential = laws[0].1;
+    if let FlowStress::Composed(law) = &mut exponential.flow {
+        law.softening = ThermalSoftening::Exponential(ExponentialSoftening {
+            lambda: 1.1e-3,
+            theta_m: 1673.0,
+        });
+    }
+    laws.push(("exponential softening".into(), exponential));
+    for (name, m) in &laws {
+        let names: Vec<&'static str> = (m.flow.names().into_iter())
+            .filter(|n| !["alpha_dot0", "theta_m", "h"].contains(n))
+            .chain(["gamma_tq"])
+            .collect();
+        assert_flow_and_path_derivatives(name, m, &names);
+    }
+}
+
+fn assert_flow_and_path_derivatives(name: &str, m: &ElastoPlastic, params: &[&'static str]) {
+    for (rate, theta) in c::uniaxial_conditions(m) {
+        let e = c::uniaxial_flow_error(m, rate, theta);
+        assert!(
+            e <= c::BOUND_UNIAXIAL,
+            "{name} at {rate} 1/s, {theta} K: {e:e}"
+        );
+    }
+    let (e, worst) = c::path_sensitivity_error(m, params);
+    assert!(e <= BOUND_DERIVATIVE, "{name}: path dσ/d{worst} {e:e}");
 }

@@ -48,9 +48,14 @@ gamma_tq = 0.9
 "#;
 
 fn error_of(text: &str) -> String {
-    parse_material(text, Path::new("bad.toml"))
-        .unwrap_err()
-        .to_string()
+    error_of_named(text, "bad.toml")
+}
+
+fn error_of_named(text: &str, file: &str) -> String {
+    match parse_material(text, Path::new(file)) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
 }
 
 #[test]
@@ -174,7 +179,121 @@ fn a_file_written_from_the_parameter_table_reads_back() {
         }
     }
     let back = parse_material(&text, Path::new("table.toml")).unwrap_or_else(|e| panic!("{e}"));
-    for p in TABLE.iter().filter(|p| p.section != "voce") {
+    for p in (TABLE.iter()).filter(|p| ["elastic", "johnson_cook", "thermal"].contains(&p.section))
+    {
         assert_eq!(back.model.param(p.name), m.param(p.name), "{}", p.name);
+    }
+}
+
+const COMPOSED: &str = r#"
+name = "composed"
+model = "composed"
+[elastic]
+E = 200e9
+nu = 0.3
+rho = 7800.0
+[hardening]
+law = "power-voce"
+A = 800e6
+B = 500e6
+N = 0.3
+Q = 100e6
+beta = 20.0
+[rate]
+law = "huh-kang"
+C = 0.01
+C2 = 0.001
+alpha_dot0 = 1.0
+[softening]
+law = "exponential"
+lambda_theta = 1e-3
+theta_m = 1700.0
+[thermal]
+theta0 = 293.15
+c_theta = 460.0
+alpha_sigma = 1.2e-5
+gamma_tq = 0.9
+"#;
+
+/// A composed law reads each factor's law and parameters; the JC-equivalent composition
+/// gives the flow stress of the JC file to round-off.
+#[test]
+fn a_composed_law_reads_its_three_factors() {
+    use materials::flow_stress::FlowStress;
+    use materials::AnyModel;
+    let m = parse_material(COMPOSED, Path::new("c.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let AnyModel::ElastoPlastic(m) = m.model else {
+        panic!("elasto-plastic")
+    };
+    let FlowStress::Composed(law) = m.flow else {
+        panic!("composed")
+    };
+    assert_eq!(
+        law.describe(),
+        "power-voce × huh-kang × exponential",
+        "{law:?}"
+    );
+    assert_eq!(m.param("C2"), Some(0.001));
+    assert_eq!(m.param("lambda_theta"), Some(1e-3));
+    let jc_text = COMPOSED
+        .replace("law = \"power-voce\"", "law = \"power\"")
+        .replace("Q = 100e6\nbeta = 20.0\n", "")
+        .replace("law = \"huh-kang\"", "law = \"johnson-cook\"")
+        .replace("C2 = 0.001\n", "")
+        .replace(
+            "law = \"exponential\"\nlambda_theta = 1e-3",
+            "law = \"johnson-cook\"\nM = 1.0",
+        );
+    let composed = parse_material(&jc_text, Path::new("jc.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let jc = parse_material(GOOD, Path::new("good.toml")).unwrap();
+    let (AnyModel::ElastoPlastic(a), AnyModel::ElastoPlastic(b)) = (composed.model, jc.model)
+    else {
+        panic!("elasto-plastic")
+    };
+    for (alpha, rate, theta) in [(0.1, 1e3, 500.0), (0.0, 0.0, 293.15), (0.5, 10.0, 1200.0)] {
+        let (x, y) = (
+            a.flow.tau_y(alpha, rate, theta, 293.15),
+            b.flow.tau_y(alpha, rate, theta, 293.15),
+        );
+        assert!((x - y).abs() <= 1e-15 * y, "{x} vs {y}");
+    }
+}
+
+/// A factor's law and its parameters are checked like every other field: unknown or
+/// missing law, a parameter of another law, a value out of range, each named at its key.
+#[test]
+fn a_composed_law_names_what_is_wrong() {
+    let cases = [
+        (
+            COMPOSED.replace("law = \"huh-kang\"", "law = \"huh_kang\""),
+            "c.toml:16:1: `rate.law`: unknown law \"huh_kang\"; expected one of \"none\", \"johnson-cook\", \"huh-kang\", \"cowper-symonds\"",
+        ),
+        (
+            COMPOSED.replace("law = \"power-voce\"\n", ""),
+            "c.toml:8:1: `hardening.law`: missing; expected one of \"power\", \"voce\", \"power-voce\"",
+        ),
+        (
+            COMPOSED.replace("law = \"huh-kang\"", "law = \"johnson-cook\""),
+            "`rate.C2`: unknown key; allowed: C, alpha_dot0",
+        ),
+        (
+            COMPOSED.replace("lambda_theta = 1e-3", "lambda_theta = 1.5"),
+            "`softening.lambda_theta`: value 1.5 outside the allowed range [0, 0.1]",
+        ),
+        (
+            COMPOSED.replace("theta_m = 1700.0", "theta_m = 200.0"),
+            "`softening.theta_m`: value 200 outside the allowed range (293.15, inf): the melting temperature in K, above theta0",
+        ),
+        (
+            COMPOSED.replace("[softening]", "[johnson_cook]"),
+            "`johnson_cook`: unknown key for model \"composed\"",
+        ),
+    ];
+    for (text, expected) in cases {
+        let message = error_of_named(&text, "c.toml");
+        assert!(
+            message.contains(expected),
+            "{message}\nexpected: {expected}"
+        );
     }
 }

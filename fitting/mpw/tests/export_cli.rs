@@ -118,3 +118,21 @@ fn a_material_that_is_not_the_report_s_is_refused() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A law a Johnson-Cook card cannot carry is refused with the file and the law, not
+/// written as the JC card of its JC-named parameters (a Huh-Kang law has A, B, N, C too).
+#[test]
+fn a_law_that_is_not_johnson_cook_gets_no_johnson_cook_card() {
+    let out = mpw(&["export", "data/materials/ss304l_huh_kang.toml"]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("data/materials/ss304l_huh_kang.toml: the flow-stress law is power × huh-kang × johnson-cook"),
+        "{err}"
+    );
+    assert!(
+        out.stdout.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+}

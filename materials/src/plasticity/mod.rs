@@ -99,7 +99,7 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
 
     fn param_names(&self) -> Vec<&'static str> {
         let mut names = Elastic::<D>::NAMES.to_vec();
-        names.extend_from_slice(self.flow.names());
+        names.extend(self.flow.names());
         names.extend_from_slice(Thermal::<D>::NAMES);
         names
     }

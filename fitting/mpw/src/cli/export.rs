@@ -41,7 +41,12 @@ pub struct Args {
 
 fn johnson_cook(file: &Path) -> Result<Material> {
     match materials::load_material(file)?.model {
-        AnyModel::ElastoPlastic(m) => Ok(m),
+        AnyModel::ElastoPlastic(m) if m.flow.as_johnson_cook().is_some() => Ok(m),
+        AnyModel::ElastoPlastic(m) => bail!(
+            "{}: the flow-stress law is {}: `mpw export` writes Johnson-Cook cards, which cannot carry it",
+            file.display(),
+            m.flow.describe()
+        ),
         _ => bail!("{}: the material must be Johnson-Cook", file.display()),
     }
 }

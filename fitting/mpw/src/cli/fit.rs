@@ -165,7 +165,11 @@ fn progress_text(f: &FitProgress, costs: &[f64], ftol: f64) -> String {
 }
 
 /// Fit a set with progress on standard error; `stop` ends the fit at its next evaluation.
-fn fit_with_progress(set: &FitSet, optimizer: Optimizer, stop: &AtomicBool) -> Result<FitResult> {
+pub fn fit_with_progress(
+    set: &FitSet,
+    optimizer: Optimizer,
+    stop: &AtomicBool,
+) -> Result<FitResult> {
     let line = ProgressLine::default();
     // Best objective at the end of each iteration of the current stage and start.
     let costs: Mutex<(String, Vec<f64>)> = Mutex::default();
@@ -211,7 +215,21 @@ fn quit_if_stopped(stop: &AtomicBool, study: &str, out: &Path) {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let mut set = FitSet::load(&args.set)?;
+    let sets = FitSet::load_candidates(&args.set)?;
+    if sets.len() > 1 {
+        anyhow::ensure!(
+            !(args.compare || args.bootstrap.is_some() || args.cross_validate || args.start.is_some()),
+            "{}: a set with [[candidate]] laws fits and cross-validates each law; --compare, --bootstrap, --cross-validate and --start apply to one law (fit it from a set without candidates)",
+            args.set.display()
+        );
+        anyhow::ensure!(
+            args.executor.executor == super::executor_args::Kind::InProcess,
+            "{}: a set with [[candidate]] laws runs in this process (--executor in-process)",
+            args.set.display()
+        );
+        return super::fit_choice::run(&args, sets);
+    }
+    let mut set = sets.into_iter().next().expect("the set as written");
     if let Some(s) = args.starts {
         set.starts = s.max(1);
     }

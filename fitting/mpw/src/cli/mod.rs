@@ -9,6 +9,7 @@ pub mod drive;
 pub mod executor_args;
 pub mod export;
 pub mod fit;
+pub mod fit_choice;
 pub mod interrupt;
 pub mod kernels;
 pub mod predict;

@@ -83,6 +83,29 @@ pub struct FitSet {
 impl FitSet {
     pub fn load(path: &Path) -> Result<FitSet> {
         let (set, text) = SetFile::read(path)?;
+        Self::build(set, &text, path)
+    }
+
+    /// The set as written, then one set per `[[candidate]]` law (its material and free
+    /// parameters, the same experiments), each named by its law.
+    pub fn load_candidates(path: &Path) -> Result<Vec<FitSet>> {
+        let (set, text) = SetFile::read(path)?;
+        let count = set.candidates.len();
+        let mut sets = vec![Self::build(set, &text, path)?];
+        for k in 0..count {
+            let (set, _) = SetFile::read(path)?;
+            let name = set.candidates[k].name.clone();
+            let candidate = set
+                .with_candidate(k)
+                .and_then(|set| Self::build(set, &text, path))
+                .with_context(|| format!("{}: [[candidate]] \"{name}\"", path.display()))?;
+            sets.push(candidate);
+        }
+        Ok(sets)
+    }
+
+    fn build(set: SetFile, text: &str, path: &Path) -> Result<FitSet> {
+        let text = text.to_string();
         let folder = path.parent().unwrap_or(Path::new("."));
         // `file:line:column: `key`` of a key at the top level or of the k-th entry of a table
         let place = |table: Option<(&str, usize)>, key: &str| {

@@ -45,6 +45,16 @@
 //! [[stage]]                   # optional; default: one stage, all parameters, all experiments
 //! free = ["A", "B", "N"]
 //! experiments = ["qs_tension"]   # experiment names (the TOML file stems)
+//! [[candidate]]               # optional: another flow-stress law to fit to the same
+//!                             #   experiments; `mpw fit` then chooses among the set's own
+//! name = "Huh-Kang rate"      #   law and every candidate by leave-one-group-out prediction
+//! material = "../materials/ss304l_huh_kang.toml"
+//! free = ["A", "B", "N", "C", "C2"]  # bounds from the set's [[parameter]] of that name,
+//! [[candidate.parameter]]     #   or from the candidate's own entries (which come first)
+//! name = "C2"
+//! lower = 0.0
+//! upper = 0.05
+//! start = 0.001
 //! ```
 //! Paths are relative to the set file's folder.
 
@@ -78,6 +88,21 @@ pub struct SetFile {
     pub experiments: Vec<ExperimentEntry>,
     #[serde(default, rename = "stage")]
     pub stages: Vec<StageEntry>,
+    /// Other flow-stress laws to fit to the same experiments and compare by prediction.
+    #[serde(default, rename = "candidate")]
+    pub candidates: Vec<CandidateEntry>,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CandidateEntry {
+    pub name: String,
+    pub material: String,
+    pub free: Vec<String>,
+    /// Bounds and starts of free parameters the set's [[parameter]] entries do not give
+    /// (or give otherwise for this law).
+    #[serde(default, rename = "parameter")]
+    pub parameters: Vec<ParameterEntry>,
 }
 
 fn default_optimizer() -> String {
@@ -88,7 +113,7 @@ fn one() -> usize {
     1
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ParameterEntry {
     pub name: String,
@@ -159,7 +184,45 @@ impl SetFile {
         if set.starts == 0 {
             bail!("{}: `starts`: must be at least 1", at("starts"));
         }
+        if !set.candidates.is_empty() && !set.stages.is_empty() {
+            bail!(
+                "{}: a set with [[candidate]] laws fits each in one stage; remove the [[stage]] entries",
+                at("stage")
+            );
+        }
         Ok((set, text))
+    }
+
+    /// This set with the `k`-th candidate's material and free parameters in place of its
+    /// own, and no candidates.
+    pub fn with_candidate(mut self, k: usize) -> Result<SetFile> {
+        let candidate = self.candidates[k].clone();
+        let mut parameters = Vec::new();
+        for name in &candidate.free {
+            let own = candidate.parameters.iter().find(|p| &p.name == name);
+            let shared = self.parameters.iter().find(|p| &p.name == name);
+            match own.or(shared) {
+                Some(p) => parameters.push(p.clone()),
+                None => bail!(
+                    "`candidate.free` of \"{}\": no bounds for `{name}`: add a [[parameter]] or [[candidate.parameter]] entry named \"{name}\"",
+                    candidate.name
+                ),
+            }
+        }
+        if let Some(extra) =
+            (candidate.parameters.iter()).find(|p| !candidate.free.contains(&p.name))
+        {
+            bail!(
+                "`candidate.parameter` of \"{}\": `{}` is not in its `free` list",
+                candidate.name,
+                extra.name
+            );
+        }
+        self.name = format!("{}: {}", self.name, candidate.name);
+        self.material = candidate.material;
+        self.parameters = parameters;
+        self.candidates.clear();
+        Ok(self)
     }
 }
 

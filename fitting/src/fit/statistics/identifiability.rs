@@ -9,8 +9,10 @@ pub const LIMIT: f64 = 0.95;
 /// What data separate a pair that contains `name`.
 fn remedy(name: &str) -> &'static str {
     match name {
-        "C" => "tests at a second, distant strain-rate band (decades apart, at one temperature)",
-        "M" | "theta_m" => "tests at another temperature (pre-heated), at a rate already covered",
+        "C" | "C2" | "D_cs" | "p_cs" => {
+            "tests at a second, distant strain-rate band (decades apart, at one temperature)"
+        }
+        "M" | "theta_m" | "lambda_theta" => "tests at another temperature (pre-heated), at a rate already covered",
         "alpha_dot0" => "fix the reference rate at the lowest test rate instead of fitting it",
         _ => "a wider strain range at one rate and temperature (hardening seen from yield to large strain)",
     }

@@ -5,25 +5,23 @@
 //! - `JohnsonCook`: eq. 4.52, τ_y = [A + B α^N] [1 + C ln(α̇/α̇0)] [1 − θ*^M] with the rate
 //!   term clamped to ≥ 1 (α̇ < α̇0 counts as α̇0) and θ* = (θ − θ0)/(θm − θ0) clamped to
 //!   [0, 1], as common explicit codes do.
+//! - `Composed`: any hardening × rate sensitivity × thermal softening of `hardening`,
+//!   `rate` and `softening` (`composed`); JC among them, which keeps its own variant and
+//!   fast path.
+
+pub mod composed;
+pub mod hardening;
+pub mod rate;
+pub mod softening;
 
 use crate::lanes::{pack, select, Lane, Mask};
 use crate::parameter_set;
 use crate::scalar::{c, Scalar};
+pub use composed::Composed;
+pub use hardening::{Hardening, Voce};
+pub use rate::RateSensitivity;
 use simba::simd::SimdBool;
-
-parameter_set! {
-    /// Eq. 4.51 parameters.
-    Voce {
-        /// initial yield strength τ0 [Pa]
-        tau0 => "tau0",
-        /// saturated yield strength τ∞ [Pa]
-        tau_inf => "tau_inf",
-        /// exponential hardening rate η [-]
-        eta => "eta",
-        /// linear hardening modulus h [Pa]
-        h => "h",
-    }
-}
+pub use softening::ThermalSoftening;
 
 parameter_set! {
     /// Eq. 4.52 parameters (θ0 lives with the thermal parameters).
@@ -49,6 +47,7 @@ parameter_set! {
 pub enum FlowStress<D = f64> {
     Voce(Voce<D>),
     JohnsonCook(JohnsonCookLaw<D>),
+    Composed(Composed<D>),
 }
 
 impl<D: Scalar> FlowStress<D> {
@@ -61,39 +60,26 @@ impl<D: Scalar> FlowStress<D> {
     /// τ_y without its thermal factor: τ_y = `tau_y_athermal` · `thermal_factor`.
     pub fn tau_y_athermal(&self, alpha: D, alpha_dot: D) -> D {
         match self {
-            FlowStress::Voce(p) => {
-                p.tau_inf + (p.tau0 - p.tau_inf) * (-p.eta * alpha).exp() + p.h * alpha
-            }
+            FlowStress::Voce(p) => Hardening::Voce(*p).at(alpha),
             FlowStress::JohnsonCook(p) => {
-                let hardening = if alpha.re() > 0.0 {
-                    p.a + p.b * alpha.powd(p.n)
-                } else {
-                    p.a
-                };
-                let rate = if alpha_dot.re() > p.alpha_dot0.re() {
-                    c::<D>(1.0) + p.c * (alpha_dot / p.alpha_dot0).ln()
-                } else {
-                    c::<D>(1.0)
-                };
-                hardening * rate
+                let hardening = hardening::power_law(p.a, p.b, p.n, alpha);
+                let rate = RateSensitivity::JohnsonCook(rate::LogRate {
+                    c: p.c,
+                    alpha_dot0: p.alpha_dot0,
+                });
+                hardening * rate.factor(alpha_dot)
             }
+            FlowStress::Composed(law) => law.tau_y_athermal(alpha, alpha_dot),
         }
     }
 
-    /// The JC thermal factor 1 − θ*^M with θ* clamped to [0, 1]; 1 for Voce.
+    /// The thermal factor: JC's 1 − θ*^M with θ* clamped to [0, 1]; 1 for Voce; the
+    /// softening factor of a composed law.
     pub fn thermal_factor(&self, theta: D, theta0: D) -> D {
         match self {
             FlowStress::Voce(_) => c::<D>(1.0),
-            FlowStress::JohnsonCook(p) => {
-                let theta_star = (theta - theta0) / (p.theta_m - theta0);
-                if theta_star.re() <= 0.0 {
-                    c::<D>(1.0)
-                } else if theta_star.re() >= 1.0 {
-                    c::<D>(0.0)
-                } else {
-                    c::<D>(1.0) - theta_star.powd(p.m)
-                }
-            }
+            FlowStress::JohnsonCook(p) => softening::johnson_cook(p.m, p.theta_m, theta, theta0),
+            FlowStress::Composed(law) => law.thermal_factor(theta, theta0),
         }
     }
 
@@ -102,6 +88,7 @@ impl<D: Scalar> FlowStress<D> {
         match self {
             FlowStress::Voce(p) => p.tau0,
             FlowStress::JohnsonCook(p) => p.a,
+            FlowStress::Composed(law) => law.hardening.at(c::<D>(0.0)),
         }
     }
 
@@ -109,13 +96,47 @@ impl<D: Scalar> FlowStress<D> {
         match self {
             FlowStress::Voce(p) => FlowStress::Voce(p.map(f)),
             FlowStress::JohnsonCook(p) => FlowStress::JohnsonCook(p.map(f)),
+            FlowStress::Composed(law) => FlowStress::Composed(law.map(f)),
         }
     }
 
-    pub fn names(&self) -> &'static [&'static str] {
+    /// The law in words: `Johnson-Cook`, `voce (rate independent)`, or a composed law's
+    /// factors (`power × huh-kang × johnson-cook`).
+    pub fn describe(&self) -> String {
         match self {
-            FlowStress::Voce(_) => Voce::<D>::NAMES,
-            FlowStress::JohnsonCook(_) => JohnsonCookLaw::<D>::NAMES,
+            FlowStress::Voce(_) => "voce (rate independent)".into(),
+            FlowStress::JohnsonCook(_) => "Johnson-Cook".into(),
+            FlowStress::Composed(law) => law.describe(),
+        }
+    }
+
+    /// The law as eq. 4.52 where it is one: the JC variant, or a composed law of power
+    /// hardening, JC rate and JC softening; `None` for any other law.
+    pub fn as_johnson_cook(&self) -> Option<JohnsonCookLaw<D>> {
+        match self {
+            FlowStress::JohnsonCook(p) => Some(*p),
+            FlowStress::Composed(Composed {
+                hardening: Hardening::Power(h),
+                rate: RateSensitivity::JohnsonCook(r),
+                softening: ThermalSoftening::JohnsonCook(t),
+            }) => Some(JohnsonCookLaw {
+                a: h.a,
+                b: h.b,
+                n: h.n,
+                c: r.c,
+                m: t.m,
+                alpha_dot0: r.alpha_dot0,
+                theta_m: t.theta_m,
+            }),
+            _ => None,
+        }
+    }
+
+    pub fn names(&self) -> Vec<&'static str> {
+        match self {
+            FlowStress::Voce(_) => Voce::<D>::NAMES.to_vec(),
+            FlowStress::JohnsonCook(_) => JohnsonCookLaw::<D>::NAMES.to_vec(),
+            FlowStress::Composed(law) => law.names(),
         }
     }
 }
@@ -140,11 +161,11 @@ pub struct Onset<L = f64> {
     alpha_n: L,
     /// α_n^N (JC with α_n > 0, else 0).
     alpha_n_pow: L,
-    /// 1 − θ*^M at θ_n (1 for Voce).
+    /// The thermal factor at θ_n (1 for Voce).
     thermal: L,
 }
 
-/// JC thermal factor 1 − θ*^M below which a point is returned as molten
+/// Thermal factor (JC: 1 − θ*^M) below which a point is returned as molten
 /// (`return_principal::molten`): the shear stress it could still carry, under 1e-6 of its
 /// cold flow stress, is dropped. The 4×4 Newton return loses digits below it (Al 7075-T6
 /// sheared 5 %: Δα off by 3e-5 at a factor of 1e-8, no convergence at 1e-9 to 1e-11).
@@ -163,7 +184,9 @@ impl FlowStress<f64> {
     pub fn onset(&self, alpha_n: f64, theta: f64, theta0: f64) -> Onset {
         let thermal = self.thermal_factor(theta, theta0);
         let (tau_y0, alpha_n_pow) = match self {
-            FlowStress::Voce(_) => (self.tau_y_athermal(alpha_n, 0.0), 0.0),
+            FlowStress::Voce(_) | FlowStress::Composed(_) => {
+                (self.tau_y_athermal(alpha_n, 0.0) * thermal, 0.0)
+            }
             FlowStress::JohnsonCook(p) => {
                 let power = if alpha_n > 0.0 {
                     alpha_n.powf(p.n)
@@ -205,7 +228,9 @@ pub struct LogIncrementPath<'a, L = f64> {
     alpha_n: L,
     /// ln(Δt α̇0), the JC rate kink (0 for Voce).
     ln_dalpha0: f64,
-    /// 1 − θ*^M at θ_n.
+    /// The step Δt [s].
+    dt: f64,
+    /// The thermal factor at θ_n.
     thermal: L,
     /// α^N = α_n^N (1 + x)^N with x = Δα/α_n, by its binomial series where that is exact.
     power: SeriesPower<L>,
@@ -306,12 +331,13 @@ impl<'a, L: Lane> LogIncrementPath<'a, L> {
     pub fn new(flow: &'a FlowStress<f64>, onset: &Onset<L>, dt: f64) -> Self {
         let (ln_dalpha0, n) = match flow {
             FlowStress::JohnsonCook(p) => ((dt * p.alpha_dot0).ln(), p.n),
-            FlowStress::Voce(_) => (0.0, f64::INFINITY),
+            FlowStress::Voce(_) | FlowStress::Composed(_) => (0.0, f64::INFINITY),
         };
         LogIncrementPath {
             flow,
             alpha_n: onset.alpha_n,
             ln_dalpha0,
+            dt,
             thermal: onset.thermal,
             power: SeriesPower::new(onset.alpha_n, onset.alpha_n_pow, n),
         }
@@ -342,6 +368,20 @@ impl<'a, L: Lane> LogIncrementPath<'a, L> {
                     hardening * rate * self.thermal,
                     (d_hardening * rate + hardening * d_rate) * self.thermal,
                 )
+            }
+            FlowStress::Composed(law) => {
+                let (mut tau_y, mut dtau_y_du) = (u, u);
+                for i in 0..L::LANES {
+                    let (value, slope) = law.along_increment(
+                        self.alpha_n.extract(i),
+                        u.extract(i),
+                        self.dt,
+                        self.thermal.extract(i),
+                    );
+                    tau_y.replace(i, value);
+                    dtau_y_du.replace(i, slope);
+                }
+                (tau_y, dtau_y_du)
             }
         };
         AtIncrement {
@@ -388,6 +428,8 @@ mod tests {
                 eta: 12.0,
                 h: 1e8,
             }),
+            FlowStress::Composed(composed::tests::huh_kang_power_voce()),
+            FlowStress::Composed(composed::tests::cowper_symonds_exponential()),
         ];
         let (alpha_n, dt, theta, theta0) = (0.05, 1e-5, 400.0, 293.15);
         for law in &laws {
