@@ -131,17 +131,25 @@ pub fn value(m: &Material, name: &str, units: &Units) -> Result<(f64, &'static s
     else {
         bail!("`{name}` is not an exported parameter");
     };
-    if m.flow.as_johnson_cook().is_none() {
-        bail!(
-            "the flow-stress law is {}, not Johnson-Cook: a Johnson-Cook card cannot carry it",
-            m.flow.describe()
-        );
-    }
     let Some(si) = m.param(name) else {
         bail!("the material has no parameter `{name}` (a Johnson-Cook model is needed)");
     };
     let (factor, unit) = units.factor(quantity);
     Ok((si * factor, unit))
+}
+
+/// The first words of a Johnson-Cook card's header.
+const JOHNSON_COOK: &str = "Johnson-Cook parameters";
+
+/// Refuse a law a Johnson-Cook card cannot carry.
+fn johnson_cook_only(m: &Material) -> Result<()> {
+    if m.flow.as_johnson_cook().is_none() {
+        bail!(
+            "the flow-stress law is {}, not Johnson-Cook: a Johnson-Cook card cannot carry it (a tabulated card can: abaqus-table, lsdyna-table)",
+            m.flow.describe()
+        );
+    }
+    Ok(())
 }
 
 /// Where a card's parameters come from: a sentence naming the files, and the caveats a
@@ -168,7 +176,7 @@ pub const COMMENT_WIDTH: usize = 80;
 
 /// `text` as comment lines of at most `COMMENT_WIDTH` characters, broken between words;
 /// continuation lines are indented by two spaces.
-fn comment(out: &mut String, mark: &str, text: &str) {
+pub(crate) fn comment(out: &mut String, mark: &str, text: &str) {
     let mut line = String::from(mark);
     for word in text.split_whitespace() {
         let fresh = line.trim_end() == mark;
@@ -184,15 +192,12 @@ fn comment(out: &mut String, mark: &str, text: &str) {
     let _ = writeln!(out, "{line}");
 }
 
-fn header(out: &mut String, mark: &str, about: &Provenance, units: &Units) {
+pub(crate) fn header(out: &mut String, mark: &str, what: &str, about: &Provenance, units: &Units) {
     let version = env!("CARGO_PKG_VERSION");
     comment(
         out,
         mark,
-        &format!(
-            "Johnson-Cook parameters of {}, written by mpw {version}",
-            about.source
-        ),
+        &format!("{what} of {}, written by mpw {version}", about.source),
     );
     for caveat in &about.caveats {
         comment(out, mark, caveat);
@@ -210,7 +215,7 @@ fn header(out: &mut String, mark: &str, about: &Provenance, units: &Units) {
 
 /// A number as it round-trips, always with a decimal point or an exponent (`193000.0`,
 /// `7.9e-9`).
-struct Num(f64);
+pub(crate) struct Num(pub f64);
 
 impl std::fmt::Display for Num {
     /// The shortest form of the value rounded to 15 significant digits: a unit conversion
@@ -226,7 +231,8 @@ impl std::fmt::Display for Num {
 pub fn abaqus(m: &Material, name: &str, about: &Provenance, units: &Units) -> Result<String> {
     let v = |n: &str| value(m, n, units).map(|(x, _)| Num(x));
     let mut out = String::new();
-    header(&mut out, "**", about, units);
+    header(&mut out, "**", JOHNSON_COOK, about, units);
+    johnson_cook_only(m)?;
     comment(&mut out, "**", "adiabatic heating (*INELASTIC HEAT FRACTION) acts only in an adiabatic step (*DYNAMIC, EXPLICIT, ADIABATIC; *STATIC or *DYNAMIC with ADIABATIC) or a coupled temperature-displacement step; elsewhere the temperature stays at its initial value");
     let _ = writeln!(out, "*MATERIAL, NAME={name}");
     let _ = writeln!(out, "*DENSITY\n {},", v("rho")?);
@@ -277,7 +283,7 @@ pub fn field10(x: f64) -> String {
 }
 
 /// One LS-DYNA card: a `$#` line of field names over the values, 10 characters each.
-fn lsdyna_card(out: &mut String, names: &[&str], values: &[String]) {
+pub(crate) fn lsdyna_card(out: &mut String, names: &[&str], values: &[String]) {
     let names: String = names.iter().map(|n| format!("{n:>10}")).collect();
     let _ = writeln!(out, "$#{}", &names[2..]);
     let _ = writeln!(out, "{}", values.concat());
@@ -301,7 +307,8 @@ pub fn lsdyna(
     let (g, k) = (e / (2.0 * (1.0 + nu)), e / (3.0 * (1.0 - 2.0 * nu)));
     let id = format!("{id:>10}");
     let mut out = String::new();
-    header(&mut out, "$", about, units);
+    header(&mut out, "$", JOHNSON_COOK, about, units);
+    johnson_cook_only(m)?;
     comment(&mut out, "$", &format!("material {name}; failure off (D1 = 1e20, D2-D5 = 0; PC = -1e20, SPALL = 1): add your own"));
     let gamma_tq = si("gamma_tq")?;
     let heating = if gamma_tq > 0.0 {
@@ -402,6 +409,7 @@ pub fn lsdyna(
 
 /// A generic JSON card: `{"parameters": {"A": {"value": .., "unit": ".."}, ..}, ..}`.
 pub fn json(m: &Material, name: &str, about: &Provenance, units: &Units) -> Result<String> {
+    johnson_cook_only(m)?;
     let quoted = |s: &str| format!("\"{}\"", s.replace('\\', "\\\\").replace('"', "\\\""));
     let mut fields = Vec::new();
     for n in FIELDS {

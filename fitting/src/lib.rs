@@ -8,8 +8,10 @@
 
 pub mod experiment;
 pub mod export;
+pub mod flow_table;
 pub mod shpb;
 pub mod shpb_model;
+pub mod tabulated_cards;
 
 pub use experiment::{load_experiment, Experiment, ExperimentError};
 pub mod fit;

@@ -132,6 +132,7 @@ pub fn run(args: Args) -> Result<()> {
     for (label, file) in [
         ("j2", "al6061_t6.toml"),
         ("johnson-cook", "42crmo4_qt660.toml"),
+        ("cowper-symonds (composed)", "ss304l_cowper_symonds.toml"),
     ] {
         let fast = elasto_plastic(&dir.join(file), ReturnMap::Principal)?;
         let reference = elasto_plastic(&dir.join(file), ReturnMap::Reference)?;
