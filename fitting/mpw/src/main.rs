@@ -27,6 +27,8 @@ enum Command {
     Fit(mpw::cli::fit::Args),
     /// Write a Johnson-Cook card for another code (Abaqus, LS-DYNA, JSON) in a stated unit system.
     Export(mpw::cli::export::Args),
+    /// Rank candidate tests (tensile or SHPB at a rate and temperature) by how much each would shrink the fitted parameters' joint uncertainty
+    Design(mpw::cli::design::Args),
     /// Evaluate an experiment set with given parameters (fit report or material file), no optimizer.
     Predict(mpw::cli::predict::Args),
     /// Write a synthetic experiment set from a stated parameter set, noise level and seed.
@@ -115,6 +117,7 @@ fn dispatch(command: Command) -> anyhow::Result<()> {
         Command::Shpb(a) => mpw::cli::shpb::run(a),
         Command::Fit(a) => mpw::cli::fit::run(a),
         Command::Export(a) => mpw::cli::export::run(a),
+        Command::Design(a) => mpw::cli::design::run(a),
         Command::Predict(a) => mpw::cli::predict::run(a),
         Command::Synth(a) => mpw::cli::synth::run(a),
         Command::Simulate(a) => mpw::cli::simulate::run(a),

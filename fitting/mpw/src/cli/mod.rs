@@ -5,6 +5,7 @@ pub mod bench_mpm;
 pub mod bench_runs;
 pub mod bench_small;
 pub mod cut;
+pub mod design;
 pub mod drive;
 pub mod executor_args;
 pub mod export;
