@@ -3,8 +3,8 @@
 //! symmetry of σ, objectivity σ(QF) = Q σ(F) Qᵀ, the AD tangent dσ/dF against central
 //! differences, the parameter sensitivities dσ/dp against fourth-order differences,
 //! plastic incompressibility det Fᵖ = 1, the elastic unloading slope, the reference
-//! (algorithm 3) against the fast (principal) return, Johnson-Cook uniaxial flow against
-//! eq. 4.52, whole-path sensitivities, and (Neo-Hooke) σ = ∂ψ/∂F Fᵀ/J (eq. 4.12-4.13).
+//! (algorithm 3) against the fast (principal) return, uniaxial flow against the law's
+//! τ_y (eq. 4.52 for Johnson-Cook), whole-path sensitivities, and (Neo-Hooke) σ = ∂ψ/∂F Fᵀ/J (eq. 4.12-4.13).
 //!
 //! `cargo test -p materials` runs them on every shipped model (`tests/conformance.rs`);
 //! the `mpw verify` table shows the same numbers. Random deformations come from a fixed
@@ -38,8 +38,11 @@ pub const BOUND_INCOMPRESSIBILITY: f64 = 1e-12;
 pub const BOUND_UNLOADING: f64 = 0.01;
 /// Reference against fast return, relative, on σ, Fᵖ⁻¹ and α.
 pub const BOUND_RETURNS: f64 = 1e-10;
-/// Kirchhoff stress against eq. 4.52 once α > 0.02, relative.
-pub const BOUND_UNIAXIAL: f64 = 5e-3;
+/// Uniaxial Kirchhoff stress against the law's τ_y at the step's plastic rate once
+/// α > 0.02, relative: the consistency condition the return solves, in the driver's
+/// uniaxial stress state, whose lateral stresses vanish only to the driver's tolerance
+/// (1e-10 of the P-wave modulus, about 1e-7 of a steel's flow stress).
+pub const BOUND_UNIAXIAL: f64 = 1e-6;
 
 /// A small deterministic generator (SplitMix64) for random deformations and rotations.
 pub struct Rng(pub u64);
@@ -258,18 +261,23 @@ pub fn uniaxial_conditions(m: &ElastoPlastic) -> [(f64, f64); 3] {
 }
 
 /// Uniaxial tension to 0.5 at constant true rate and fixed temperature (one of
-/// `uniaxial_conditions`): the worst relative difference of the Kirchhoff stress from
-/// eq. 4.52 at α̇ = ε̇ once α > 0.02.
+/// `uniaxial_conditions`): the worst relative difference of the Kirchhoff stress from the
+/// model's τ_y at the plastic rate of each record interval, α̇ = Δα/Δt, once α > 0.02.
+/// (The plastic rate falls short of the imposed rate by the elastic strain rate σ̇/E,
+/// 2-4 % early in hardening: a law as rate-sensitive as Cowper-Symonds with p = 5 shows
+/// that as 5e-3 against τ_y at the imposed rate.)
 pub fn uniaxial_flow_error(m: &ElastoPlastic, rate: f64, theta: f64) -> f64 {
     let fixed = Temperature::Prescribed(Ramp::constant(theta));
     let path = LoadPath::uniaxial(RateKind::True, 0.5, rate, 0.0, 500, fixed).expect("path");
-    let records = driver::run(m, &path).expect("uniaxial JC path");
-    (records.iter())
-        .filter(|r| r.state.alpha > 0.02)
-        .map(|r| {
+    let records = driver::run(m, &path).expect("uniaxial path");
+    (records.windows(2))
+        .filter(|w| w[1].state.alpha > 0.02)
+        .map(|w| {
+            let (r, previous) = (&w[1], &w[0]);
+            let plastic_rate = (r.state.alpha - previous.state.alpha) / (r.time - previous.time);
             let tau_xx = r.sigma[(0, 0)] * r.f.determinant();
             let theta0 = m.thermal.theta0;
-            (tau_xx / m.flow.tau_y(r.state.alpha, rate, theta, theta0) - 1.0).abs()
+            (tau_xx / m.flow.tau_y(r.state.alpha, plastic_rate, theta, theta0) - 1.0).abs()
         })
         .fold(0.0, f64::max)
 }

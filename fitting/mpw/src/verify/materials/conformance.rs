@@ -79,12 +79,13 @@ pub fn check_returns_agree(name: &str, reference: &ElastoPlastic, fast: &ElastoP
     )
 }
 
-/// Johnson-Cook in uniaxial tension against eq. 4.52.
-pub fn check_jc_uniaxial(name: &str, m: &ElastoPlastic) -> Vec<Row> {
+/// Uniaxial tension against the model's flow stress: `law` names it (`eq. 4.52` for
+/// Johnson-Cook).
+pub fn check_uniaxial(name: &str, law: &str, m: &ElastoPlastic) -> Vec<Row> {
     (c::uniaxial_conditions(m).into_iter())
         .map(|(rate, theta)| {
             Row::at_most(
-                format!("{name}: uniaxial vs eq. 4.52, rate {rate:e}, θ {theta}"),
+                format!("{name}: uniaxial vs {law}, rate {rate:e}, θ {theta}"),
                 c::uniaxial_flow_error(m, rate, theta),
                 c::BOUND_UNIAXIAL,
             )

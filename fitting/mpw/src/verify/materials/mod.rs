@@ -8,7 +8,8 @@ pub mod iso_error;
 
 use crate::verify::row::Row;
 use crate::verify::Inputs;
-use materials::flow_stress::{FlowStress, Voce};
+use materials::flow_stress::softening::ExponentialSoftening;
+use materials::flow_stress::{FlowStress, ThermalSoftening, Voce};
 use materials::param_file::{load_elasto_plastic, load_material, ParamFileError};
 use materials::plasticity::{ElastoPlastic, ReturnMap};
 use materials::AnyModel;
@@ -25,6 +26,29 @@ pub fn j2_voce(dir: &Path) -> Result<ElastoPlastic, ParamFileError> {
         h: 1e8,
     });
     Ok(j2)
+}
+
+/// One law of each factor of `flow_stress::composed`: the shipped composed files, and the
+/// exponential softening (no shipped file has it) on the Cowper-Symonds one.
+fn composed_laws(dir: &Path) -> Result<Vec<ElastoPlastic>, ParamFileError> {
+    let mut laws = Vec::new();
+    for file in [
+        "ss304l_huh_kang.toml",
+        "ss304l_cowper_symonds.toml",
+        "ss304l_power_voce.toml",
+        "steel_945_voce.toml",
+    ] {
+        laws.push(load_elasto_plastic(dir.join(file))?);
+    }
+    let mut exponential = laws[1];
+    if let FlowStress::Composed(law) = &mut exponential.flow {
+        law.softening = ThermalSoftening::Exponential(ExponentialSoftening {
+            lambda: 1.1e-3,
+            theta_m: 1673.0,
+        });
+    }
+    laws.push(exponential);
+    Ok(laws)
 }
 
 /// Every materials row of `mpw verify` (`full`: the finer iso-error map).
@@ -71,12 +95,28 @@ fn cases(dir: &Path, full: bool) -> Result<Vec<Row>, ParamFileError> {
             &with(m, ReturnMap::Principal),
         ));
     }
-    out.extend(conformance::check_jc_uniaxial("johnson-cook", &jc));
+    out.extend(conformance::check_uniaxial("johnson-cook", "eq. 4.52", &jc));
     out.push(conformance::check_path_sensitivities(
         "johnson-cook",
         &jc,
         &["A", "B", "N", "C", "M", "gamma_tq"],
     ));
+    for m in composed_laws(dir)? {
+        let name = m.flow.describe();
+        out.extend(conformance::check_model(&name, &m));
+        out.extend(conformance::check_plastic(&name, &m));
+        out.push(conformance::check_returns_agree(
+            &name,
+            &with(&m, ReturnMap::Reference),
+            &with(&m, ReturnMap::Principal),
+        ));
+        out.extend(conformance::check_uniaxial(&name, "its τ_y", &m));
+        let params: Vec<&'static str> = (m.flow.names().into_iter())
+            .filter(|n| !["alpha_dot0", "theta_m", "h"].contains(n))
+            .chain(["gamma_tq"])
+            .collect();
+        out.push(conformance::check_path_sensitivities(&name, &m, &params));
+    }
 
     let aisi_4340 = load_elasto_plastic(dir.join("aisi_4340.toml"))?;
     let curves = figure_4_5::run(&aisi_4340).expect("figure 4.5 paths");
