@@ -233,7 +233,40 @@ pub fn abaqus(m: &Material, name: &str, about: &Provenance, units: &Units) -> Re
     let mut out = String::new();
     header(&mut out, "**", JOHNSON_COOK, about, units);
     johnson_cook_only(m)?;
-    comment(&mut out, "**", "adiabatic heating (*INELASTIC HEAT FRACTION) acts only in an adiabatic step (*DYNAMIC, EXPLICIT, ADIABATIC; *STATIC or *DYNAMIC with ADIABATIC) or a coupled temperature-displacement step; elsewhere the temperature stays at its initial value");
+    abaqus_material(&mut out, m, name, units, |out| {
+        let _ = writeln!(
+            out,
+            "*PLASTIC, HARDENING=JOHNSON COOK\n {}, {}, {}, {}, {}, {}",
+            v("A")?,
+            v("B")?,
+            v("N")?,
+            v("M")?,
+            v("theta_m")?,
+            v("theta0")?
+        );
+        let _ = writeln!(
+            out,
+            "*RATE DEPENDENT, TYPE=JOHNSON COOK\n {}, {}",
+            v("C")?,
+            v("alpha_dot0")?
+        );
+        Ok(())
+    })?;
+    Ok(out)
+}
+
+/// The body of an Abaqus material block named `name`: the note on adiabatic heating,
+/// density, elasticity and expansion, the plasticity `plastic` writes, specific heat and
+/// the inelastic heat fraction.
+pub(crate) fn abaqus_material(
+    out: &mut String,
+    m: &Material,
+    name: &str,
+    units: &Units,
+    plastic: impl FnOnce(&mut String) -> Result<()>,
+) -> Result<()> {
+    let v = |n: &str| value(m, n, units).map(|(x, _)| Num(x));
+    comment(out, "**", "adiabatic heating (*INELASTIC HEAT FRACTION) acts only in an adiabatic step (*DYNAMIC, EXPLICIT, ADIABATIC; *STATIC or *DYNAMIC with ADIABATIC) or a coupled temperature-displacement step; elsewhere the temperature stays at its initial value");
     let _ = writeln!(out, "*MATERIAL, NAME={name}");
     let _ = writeln!(out, "*DENSITY\n {},", v("rho")?);
     let _ = writeln!(out, "*ELASTIC\n {}, {}", v("E")?, v("nu")?);
@@ -243,25 +276,10 @@ pub fn abaqus(m: &Material, name: &str, about: &Provenance, units: &Units) -> Re
         v("theta0")?,
         v("alpha_sigma")?
     );
-    let _ = writeln!(
-        out,
-        "*PLASTIC, HARDENING=JOHNSON COOK\n {}, {}, {}, {}, {}, {}",
-        v("A")?,
-        v("B")?,
-        v("N")?,
-        v("M")?,
-        v("theta_m")?,
-        v("theta0")?
-    );
-    let _ = writeln!(
-        out,
-        "*RATE DEPENDENT, TYPE=JOHNSON COOK\n {}, {}",
-        v("C")?,
-        v("alpha_dot0")?
-    );
+    plastic(out)?;
     let _ = writeln!(out, "*SPECIFIC HEAT\n {},", v("c_theta")?);
     let _ = writeln!(out, "*INELASTIC HEAT FRACTION\n {},", v("gamma_tq")?);
-    Ok(out)
+    Ok(())
 }
 
 /// `x` in a 10-character fixed-format field: right-aligned in at most 9 characters, so that

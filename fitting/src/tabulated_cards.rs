@@ -13,7 +13,7 @@
 //! table's sampling, tolerance and ranges stand in the header. mpw's yield stress is a
 //! Kirchhoff stress, the codes' a Cauchy stress (`export`).
 
-use crate::export::{comment, header, lsdyna_card, value, Num, Provenance, Units};
+use crate::export::{abaqus_material, comment, header, lsdyna_card, value, Num, Provenance, Units};
 use crate::fit::levels::model::Material;
 use crate::flow_table::{FlowTable, TableRange};
 use anyhow::Result;
@@ -58,34 +58,25 @@ pub fn abaqus_table(
 ) -> Result<String> {
     let theta0 = value(m, "theta0", units)?.0;
     let table = FlowTable::sample(&m.flow, theta0, range)?;
-    let v = |n: &str| value(m, n, units).map(|(x, _)| Num(x));
     let mut out = String::new();
     header(&mut out, "**", "Tabulated flow stress", about, units);
     describe_table(&mut out, "**", m, &table, range, units);
-    let _ = writeln!(out, "*MATERIAL, NAME={name}");
-    let _ = writeln!(out, "*DENSITY\n {},", v("rho")?);
-    let _ = writeln!(out, "*ELASTIC\n {}, {}", v("E")?, v("nu")?);
-    let _ = writeln!(
-        out,
-        "*EXPANSION, ZERO={}\n {},",
-        v("theta0")?,
-        v("alpha_sigma")?
-    );
-    let with_temperature = table.temperatures.len() > 1;
-    for (r, &rate) in table.rates.iter().enumerate() {
-        let _ = writeln!(out, "*PLASTIC, RATE={}", Num(rate * units.rate));
-        for (t, &theta) in table.temperatures.iter().enumerate() {
-            for (s, &strain) in table.strains.iter().enumerate() {
-                let stress = Num(table.stress[t][r][s] * units.stress);
-                match with_temperature {
-                    true => writeln!(out, " {stress}, {}, {}", Num(strain), Num(theta)),
-                    false => writeln!(out, " {stress}, {}", Num(strain)),
-                }?;
+    abaqus_material(&mut out, m, name, units, |out| {
+        let with_temperature = table.temperatures.len() > 1;
+        for (r, &rate) in table.rates.iter().enumerate() {
+            writeln!(out, "*PLASTIC, RATE={}", Num(rate * units.rate))?;
+            for (t, &theta) in table.temperatures.iter().enumerate() {
+                for (s, &strain) in table.strains.iter().enumerate() {
+                    let stress = Num(table.stress[t][r][s] * units.stress);
+                    match with_temperature {
+                        true => writeln!(out, " {stress}, {}, {}", Num(strain), Num(theta)),
+                        false => writeln!(out, " {stress}, {}", Num(strain)),
+                    }?;
+                }
             }
         }
-    }
-    let _ = writeln!(out, "*SPECIFIC HEAT\n {},", v("c_theta")?);
-    let _ = writeln!(out, "*INELASTIC HEAT FRACTION\n {},", v("gamma_tq")?);
+        Ok(())
+    })?;
     Ok(out)
 }
 
