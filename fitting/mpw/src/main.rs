@@ -23,7 +23,7 @@ enum Command {
     Bench(mpw::cli::bench::Args),
     /// Process an SHPB record: face forces, strain rate, stress-strain curve, equilibrium.
     Shpb(mpw::cli::shpb::Args),
-    /// Fit Johnson-Cook parameters to an experiment set (default: the synthetic 42CrMo4 set).
+    /// Fit material parameters to an experiment set (default: the synthetic 42CrMo4 set); with [[candidate]] laws, choose the law that predicts best
     Fit(mpw::cli::fit::Args),
     /// Write a Johnson-Cook card for another code (Abaqus, LS-DYNA, JSON) in a stated unit system.
     Export(mpw::cli::export::Args),

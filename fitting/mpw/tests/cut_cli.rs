@@ -248,3 +248,43 @@ fn orthogonal_cuts_of_other_depth_or_friction_get_their_own_folders() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The orthogonal cut repeated over two seeds to 4 µs on a coarse grid: the spread table
+/// has time, mean, std and CV of f_x per sample, CV = std/|mean|, and the seeds differ
+/// once the tool cuts.
+#[test]
+fn repeated_orthogonal_runs_give_the_cutting_force_spread() {
+    let dir = std::env::temp_dir().join(format!("mpw-cut-repeat-orth-{}", std::process::id()));
+    mpw_ok(&[
+        "cut",
+        "repeat",
+        "--cut",
+        "orthogonal",
+        "--seeds",
+        "1,2",
+        "--end",
+        "4e-6",
+        "--spacing",
+        "4e-4",
+        "--points",
+        "20",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let header = std::fs::read_to_string(dir.join("repeat.csv")).unwrap();
+    assert!(
+        header.starts_with("time_s,mean_force_x_n_per_m,std_force_x_n_per_m,cv\n"),
+        "{header}"
+    );
+    let rows = numbers(&dir.join("repeat.csv"));
+    let cutting: Vec<&Vec<f64>> = rows.iter().filter(|r| r[1] != 0.0).collect();
+    assert!(!cutting.is_empty());
+    for r in &cutting {
+        assert!(
+            (r[3] - r[2] / r[1].abs()).abs() <= 1e-12 * r[3].abs().max(1.0),
+            "{r:?}"
+        );
+    }
+    assert!(cutting.iter().any(|r| r[2] > 0.0), "two seeds, one force");
+    assert!(dir.join("repeat.png").is_file() && dir.join("cv.png").is_file());
+}

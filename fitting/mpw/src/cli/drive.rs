@@ -188,7 +188,7 @@ fn check_temperature(args: &Args, model: &materials::AnyModel) -> Result<()> {
             bail!("--temperature {theta}: an absolute temperature in K must be above 0 K");
         }
         if let Some(theta_m) = model.param("theta_m").filter(|&tm| theta >= tm) {
-            bail!("--temperature {theta} K is at or above the melting temperature θm = {theta_m} K of {file}: the Johnson-Cook flow stress is zero there");
+            bail!("--temperature {theta} K is at or above the melting temperature θm = {theta_m} K of {file}: the flow stress is zero there");
         }
     }
     if args.adiabatic && model.param("gamma_tq") == Some(0.0) {

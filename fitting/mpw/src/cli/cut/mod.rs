@@ -32,6 +32,7 @@ pub use repeat::RepeatArgs;
 pub use vertical::VerticalArgs;
 
 use anyhow::{Context, Result};
+use cutting::orthogonal::{OrthogonalCut, Resolution};
 use cutting::vertical::{Discretization, VerticalCut, SETS};
 use cutting::workpiece::RunOptions;
 use mpm_core::run::RunSummary;
@@ -139,6 +140,24 @@ fn vertical_scene_text(
         set.points_y,
         set.name,
         toml::to_string(&cut.scene(set, end_feed, options))?
+    ))
+}
+
+/// The scene file of the orthogonal cut at `resolution`: a comment naming it, then the
+/// TOML.
+fn orthogonal_scene_text(
+    cut: &OrthogonalCut,
+    resolution: &Resolution,
+    options: &RunOptions,
+) -> Result<String> {
+    Ok(format!(
+        "# Orthogonal cut, thesis section 12.3: dx = {} m, {} x {} points, depth of cut {} m.\n\
+         # Written by `mpw cut orthogonal` (cutting::orthogonal explains every chosen value).\n{}",
+        resolution.spacing,
+        3 * resolution.points_y,
+        resolution.points_y,
+        cut.feed,
+        toml::to_string(&cut.scene(resolution, options))?
     ))
 }
 

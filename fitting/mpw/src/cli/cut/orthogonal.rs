@@ -1,7 +1,7 @@
 //! `mpw cut orthogonal`: forces, shear angle, Merchant's estimate, chip.
 
 use super::pictures::{field_picture, force_range, mean, snapshots, with_peak};
-use super::{same_scene, Common, CutRun};
+use super::{orthogonal_scene_text, same_scene, Common, CutRun};
 use crate::charts::{LineChart, Series};
 use anyhow::{Context, Result};
 use cutting::merchant::Merchant;
@@ -45,7 +45,7 @@ const FORCE_FILTER: SavitzkyGolay = SavitzkyGolay {
 };
 
 /// Forces count as steady from this time on (the thesis: after 15-20 µs) [s].
-const STEADY_FROM: f64 = 20e-6;
+pub(super) const STEADY_FROM: f64 = 20e-6;
 
 pub fn orthogonal(args: OrthogonalArgs) -> Result<()> {
     let cut = OrthogonalCut {
@@ -72,15 +72,7 @@ pub fn orthogonal(args: OrthogonalArgs) -> Result<()> {
     let out = (args.common.out.clone())
         .unwrap_or_else(|| Path::new("out").join(format!("cut_orthogonal_{name}")));
     let options = args.common.options(&args.material)?;
-    let text = format!(
-        "# Orthogonal cut, thesis section 12.3: dx = {} m, {} x {} points, depth of cut {} m.\n\
-         # Written by `mpw cut orthogonal` (cutting::orthogonal explains every chosen value).\n{}",
-        args.spacing,
-        3 * args.points,
-        args.points,
-        args.depth,
-        toml::to_string(&cut.scene(&resolution, &options))?
-    );
+    let text = orthogonal_scene_text(&cut, &resolution, &options)?;
     match args.analyse_only {
         false => {
             let run = CutRun::start(&text, &out)?;
