@@ -19,13 +19,12 @@ use fitting::fit::levels::tensile::{Tensile, Thermal};
 use fitting::fit::objective::Block;
 use fitting::fit::optimize::run::{run_fit, Optimizer};
 use fitting::fit::params::FreeParam;
-use fitting::fit::sets::fit_set::{FitSet, Stage};
+use fitting::fit::sets::fit_set::FitSet;
 use fitting::fit::statistics::bootstrap::bootstrap;
 use fitting::fit::synthetic::synth::gaussian;
 use materials::material::Model;
 use rand::SeedableRng;
 use rand_pcg::Pcg64;
-use std::collections::BTreeMap;
 use std::path::Path;
 
 const RECORDS: usize = 5;
@@ -105,23 +104,8 @@ fn population(seed: u64) -> FitSet {
         p("C", 0.0, 0.2),
     ];
     FitSet {
-        name: "coverage".into(),
-        file: "coverage.toml".into(),
-        material_file: "ss304l.toml".into(),
-        material_name: "304L annealed".into(),
-        base: m,
-        stages: vec![Stage {
-            free: (0..params.len()).collect(),
-            experiments: (0..blocks.len()).collect(),
-        }],
-        params,
-        blocks,
-        optimizer: "lm".into(),
-        starts: 1,
-        ftol: fitting::fit::optimize::lm::LmOptions::default().ftol,
         seed,
-        truth: BTreeMap::new(),
-        evaluations: std::sync::Arc::new(fitting::fit::evaluations::InProcess),
+        ..FitSet::in_memory("coverage", m, params, blocks)
     }
 }
 

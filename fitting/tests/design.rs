@@ -3,18 +3,16 @@
 //! first must shrink the scatter of the refitted parameters over noise seeds more than the
 //! one it puts last.
 
-use fitting::fit::evaluations::InProcess;
 use fitting::fit::levels::model::Material;
 use fitting::fit::objective::Block;
 use fitting::fit::optimize::run::{run_fit, Optimizer};
 use fitting::fit::params::FreeParam;
-use fitting::fit::sets::fit_set::{FitSet, Stage};
+use fitting::fit::sets::fit_set::FitSet;
 use fitting::fit::statistics::design::{rank, CandidateTest};
 use fitting::fit::synthetic::synth::gaussian;
 use materials::material::Model;
 use rand::SeedableRng;
-use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::path::Path;
 
 const FREE: [&str; 4] = ["A", "B", "N", "C"];
 /// Noise: 1 % of each record's peak.
@@ -61,23 +59,8 @@ fn refit(m: &Material, blocks: Vec<Block>) -> Vec<f64> {
         FreeParam::new("C", 0.0, 0.2, 0.05).unwrap(),
     ];
     let set = FitSet {
-        name: "design check".into(),
-        file: PathBuf::from("design.toml"),
-        material_file: PathBuf::from("steel_945.toml"),
-        material_name: "945".into(),
-        base: *m,
-        stages: vec![Stage {
-            free: (0..params.len()).collect(),
-            experiments: (0..blocks.len()).collect(),
-        }],
-        params,
-        blocks,
-        optimizer: "lm".into(),
-        starts: 1,
         ftol: 1e-10,
-        seed: 0,
-        truth: Default::default(),
-        evaluations: Arc::new(InProcess),
+        ..FitSet::in_memory("design check", *m, params, blocks)
     };
     let fit = run_fit(&set, Optimizer::LmExact, &|_| {
         std::ops::ControlFlow::Continue(())

@@ -104,6 +104,35 @@ impl FitSet {
         Ok(sets)
     }
 
+    /// A set built in memory, without a file: `blocks` fitted over every parameter of
+    /// `params` in one stage, one start, in this process, LM's default tolerance.
+    pub fn in_memory(
+        name: &str,
+        base: Material,
+        params: Vec<FreeParam>,
+        blocks: Vec<Block>,
+    ) -> FitSet {
+        FitSet {
+            name: name.to_string(),
+            file: PathBuf::from(format!("{name} (in memory)")),
+            material_file: PathBuf::new(),
+            material_name: name.to_string(),
+            base,
+            stages: vec![Stage {
+                free: (0..params.len()).collect(),
+                experiments: (0..blocks.len()).collect(),
+            }],
+            params,
+            blocks,
+            optimizer: "lm".into(),
+            starts: 1,
+            ftol: LmOptions::default().ftol,
+            seed: 0,
+            truth: BTreeMap::new(),
+            evaluations: Arc::new(InProcess),
+        }
+    }
+
     fn build(set: SetFile, text: &str, path: &Path) -> Result<FitSet> {
         let text = text.to_string();
         let folder = path.parent().unwrap_or(Path::new("."));
