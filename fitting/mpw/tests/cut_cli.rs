@@ -250,8 +250,8 @@ fn orthogonal_cuts_of_other_depth_or_friction_get_their_own_folders() {
 }
 
 /// The orthogonal cut repeated over two seeds to 4 µs on a coarse grid: the spread table
-/// has time, mean, std and CV of f_x per sample, CV = std/|mean|, and the seeds differ
-/// once the tool cuts.
+/// has time, mean, std and CV of the filtered f_x per sample, CV = std/|mean|, and the
+/// seeds differ once the tool cuts.
 #[test]
 fn repeated_orthogonal_runs_give_the_cutting_force_spread() {
     let dir = std::env::temp_dir().join(format!("mpw-cut-repeat-orth-{}", std::process::id()));
@@ -273,7 +273,8 @@ fn repeated_orthogonal_runs_give_the_cutting_force_spread() {
     ]);
     let header = std::fs::read_to_string(dir.join("repeat.csv")).unwrap();
     assert!(
-        header.starts_with("time_s,mean_force_x_n_per_m,std_force_x_n_per_m,cv\n"),
+        header
+            .starts_with("time_s,mean_force_x_filtered_n_per_m,std_force_x_filtered_n_per_m,cv\n"),
         "{header}"
     );
     let rows = numbers(&dir.join("repeat.csv"));

@@ -39,7 +39,7 @@ pub struct OrthogonalArgs {
 }
 
 /// Filter of the cutting forces (thesis §12.3): 31 samples, first order.
-const FORCE_FILTER: SavitzkyGolay = SavitzkyGolay {
+pub(super) const FORCE_FILTER: SavitzkyGolay = SavitzkyGolay {
     window: 31,
     order: 1,
 };

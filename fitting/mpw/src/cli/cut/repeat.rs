@@ -5,7 +5,7 @@
 //! scene is in `seed_<s>/scene.toml`, its run in the batch folder (`tasks/task-<i>/run`, or
 //! under Slurm's `work_dir`).
 
-use super::orthogonal::STEADY_FROM;
+use super::orthogonal::{FORCE_FILTER, STEADY_FROM};
 use super::pictures::{force_range, mean, with_peak};
 use super::{absolute, orthogonal_scene_text, same_scene, vertical_scene_text};
 use crate::charts::{LineChart, Series};
@@ -15,6 +15,7 @@ use cutting::orthogonal::{OrthogonalCut, Resolution};
 use cutting::record::ToolForce;
 use cutting::vertical::{discretization, VerticalCut};
 use cutting::workpiece::RunOptions;
+use fitting::experiment::processing::SavitzkyGolay;
 use runs::task::TaskDir;
 use runs::{Batch, RunDescription};
 use std::path::{Path, PathBuf};
@@ -62,6 +63,10 @@ struct Repeated {
     tool: &'static str,
     /// Read f_y (vertical) or f_x (orthogonal).
     vertical_force: bool,
+    /// The filter the cut's forces are read through (orthogonal: the thesis's
+    /// Savitzky-Golay filter); the spread is of the filtered force, the raw force's CV is
+    /// printed beside it.
+    filter: Option<SavitzkyGolay>,
     /// Abscissa of a history time [s], and its chart label.
     abscissa: Box<dyn Fn(f64) -> f64>,
     abscissa_label: &'static str,
@@ -95,6 +100,7 @@ fn repeated(args: &RepeatArgs) -> Result<(Repeated, PathBuf, PathBuf)> {
                 name: format!("vertical cut {}", set.name),
                 tool: "punch",
                 vertical_force: true,
+                filter: None,
                 abscissa: Box::new(|t| 100.0 * VerticalCut::default().feed_at(t)),
                 abscissa_label: "relative feed [%]",
                 abscissa_column: Some(("relative_feed", 0.01)),
@@ -116,6 +122,7 @@ fn repeated(args: &RepeatArgs) -> Result<(Repeated, PathBuf, PathBuf)> {
                 name: format!("orthogonal cut dx {} m, n_y {}", args.spacing, args.points),
                 tool: "tool",
                 vertical_force: false,
+                filter: Some(FORCE_FILTER),
                 abscissa: Box::new(|t| t * 1e6),
                 abscissa_label: "time [µs]",
                 abscissa_column: None,
@@ -186,7 +193,7 @@ pub fn repeat(args: RepeatArgs) -> Result<()> {
             );
         }
     }
-    let mut forces = Vec::new();
+    let mut forces: Vec<Vec<f64>> = Vec::new();
     let mut time = Vec::new();
     for i in 0..args.seeds.len() {
         let history = TaskDir(dir.join(format!("task-{i}")))
@@ -201,7 +208,32 @@ pub fn repeat(args: RepeatArgs) -> Result<()> {
             false => force.force_x,
         });
     }
+    if let Some(filter) = &what.filter {
+        let raw = cutting::repeatability::spread(&forces).context("no spread")?;
+        let x: Vec<f64> = time.iter().map(|&t| (what.abscissa)(t)).collect();
+        print_settled_cv(&what, "raw force", &raw.cv, &x);
+        forces = forces.iter().map(|f| filter.apply(f)).collect();
+    }
     chart_spread(&what, &forces, &time, &out, args.seeds.len())
+}
+
+/// The CV(t) of the settled cut (from `what.settled_from` on): its mean and how often it
+/// exceeds 0.3, on standard output.
+fn print_settled_cv(what: &Repeated, label: &str, cv: &[f64], x: &[f64]) {
+    let settled: Vec<f64> = (0..cv.len())
+        .filter(|&k| x[k] >= what.settled_from)
+        .map(|k| cv[k])
+        .filter(|c| c.is_finite())
+        .collect();
+    if let Some(m) = mean(&settled) {
+        let above = settled.iter().filter(|&&c| c > 0.3).count();
+        println!(
+            "CV of the {label} from {} on ({}): mean {m:.3}, above 0.3 in {above} of {} samples",
+            what.settled_from,
+            what.abscissa_label,
+            settled.len()
+        );
+    }
 }
 
 /// The mean, spread and CV(t) of `forces` over the seeds: `repeat.csv`, `repeat.png`,
@@ -216,13 +248,16 @@ fn chart_spread(
     let s = cutting::repeatability::spread(forces).context("no spread")?;
     let n = s.mean.len();
     let x: Vec<f64> = time[..n].iter().map(|&t| (what.abscissa)(t)).collect();
-    let component = if what.vertical_force { "y" } else { "x" };
+    let component = match (what.vertical_force, what.filter.is_some()) {
+        (true, _) => "force_y",
+        (false, false) => "force_x",
+        (false, true) => "force_x_filtered",
+    };
     let (first, factor) = match what.abscissa_column {
         Some((name, factor)) => (format!("{name},"), Some(factor)),
         None => (String::new(), None),
     };
-    let mut csv =
-        format!("{first}time_s,mean_force_{component}_n_per_m,std_force_{component}_n_per_m,cv\n");
+    let mut csv = format!("{first}time_s,mean_{component}_n_per_m,std_{component}_n_per_m,cv\n");
     for k in 0..n {
         if let Some(factor) = factor {
             csv += &format!("{:e},", x[k] * factor);
@@ -236,7 +271,14 @@ fn chart_spread(
     let band = |sign: f64| -> Vec<f64> { (0..n).map(|k| s.mean[k] + sign * s.std[k]).collect() };
     let ((lo, hi), off) = force_range(&[&band(1.0), &band(-1.0)]);
     LineChart::new(
-        with_peak(format!("{}: force over {seeds} seeds", what.name), off),
+        with_peak(
+            format!(
+                "{}: {} over {seeds} seeds",
+                what.name,
+                component.replace('_', " ")
+            ),
+            off,
+        ),
         what.abscissa_label,
         what.force_label,
     )
@@ -246,27 +288,22 @@ fn chart_spread(
     .with(Series::scaled("mean − std", &x, &band(-1.0), 1.0, 1e-6))
     .write_png(&out.join("repeat.png"))?;
     LineChart::new(
-        format!("{}: CV(t) = std/mean over {seeds} seeds", what.name),
+        format!(
+            "{}: CV(t) of the {} over {seeds} seeds",
+            what.name,
+            component.replace('_', " ")
+        ),
         what.abscissa_label,
         "coefficient of variation [-]",
     )
     .y_range(0.0, 1.0)
     .with(Series::scaled("CV", &x, &s.cv, 1.0, 1.0))
     .write_png(&out.join("cv.png"))?;
-    let settled: Vec<f64> = (0..n)
-        .filter(|&k| x[k] >= what.settled_from)
-        .map(|k| s.cv[k])
-        .filter(|c| c.is_finite())
-        .collect();
-    if let Some(m) = mean(&settled) {
-        let above = settled.iter().filter(|&&c| c > 0.3).count();
-        println!(
-            "CV of the force from {} on ({}): mean {m:.3}, above 0.3 in {above} of {} samples",
-            what.settled_from,
-            what.abscissa_label,
-            settled.len()
-        );
-    }
+    let label = match what.filter {
+        Some(_) => "filtered force",
+        None => "force",
+    };
+    print_settled_cv(what, label, &s.cv, &x);
     println!(
         "repeat.csv, repeat.png, cv.png and each seed's scene in {}",
         out.display()
