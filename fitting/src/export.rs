@@ -230,9 +230,9 @@ impl std::fmt::Display for Num {
 /// An Abaqus material block named `name`.
 pub fn abaqus(m: &Material, name: &str, about: &Provenance, units: &Units) -> Result<String> {
     let v = |n: &str| value(m, n, units).map(|(x, _)| Num(x));
+    johnson_cook_only(m)?;
     let mut out = String::new();
     header(&mut out, "**", JOHNSON_COOK, about, units);
-    johnson_cook_only(m)?;
     abaqus_material(&mut out, m, name, units, |out| {
         let _ = writeln!(
             out,
@@ -324,9 +324,9 @@ pub fn lsdyna(
     let (e, nu) = (si("E")?, si("nu")?);
     let (g, k) = (e / (2.0 * (1.0 + nu)), e / (3.0 * (1.0 - 2.0 * nu)));
     let id = format!("{id:>10}");
+    johnson_cook_only(m)?;
     let mut out = String::new();
     header(&mut out, "$", JOHNSON_COOK, about, units);
-    johnson_cook_only(m)?;
     comment(&mut out, "$", &format!("material {name}; failure off (D1 = 1e20, D2-D5 = 0; PC = -1e20, SPALL = 1): add your own"));
     let gamma_tq = si("gamma_tq")?;
     let heating = if gamma_tq > 0.0 {

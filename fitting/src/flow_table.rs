@@ -101,13 +101,12 @@ impl FlowTable {
                     .collect()
             })
             .collect();
-        let table = FlowTable {
+        Ok(FlowTable {
             strains,
             rates,
             temperatures,
             stress,
-        };
-        Ok(table)
+        })
     }
 
     /// The table interpolated at (ε_p, ε̇_p, θ), held constant outside its nodes, rates

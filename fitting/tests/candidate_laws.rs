@@ -49,7 +49,10 @@ start = 0.001
 #[test]
 fn each_candidate_is_the_set_with_its_own_law_and_free_parameters() {
     let file = set_with(HUH_KANG, "ok");
-    let sets = FitSet::load_candidates(&file).unwrap_or_else(|e| panic!("{e:#}"));
+    let named = FitSet::load_candidates(&file).unwrap_or_else(|e| panic!("{e:#}"));
+    let names: Vec<&str> = named.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["42CrMo4 QT660", "Huh-Kang rate"]);
+    let sets: Vec<FitSet> = named.into_iter().map(|(_, s)| s).collect();
     assert_eq!(sets.len(), 2);
     assert!(matches!(sets[0].base.flow, FlowStress::JohnsonCook(_)));
     let FlowStress::Composed(law) = sets[1].base.flow else {
@@ -177,8 +180,8 @@ fn the_choice_finds_the_law_the_data_came_from() {
     }
     std::fs::write(dir.join("set.toml"), set).unwrap();
     let sets = FitSet::load_candidates(&dir.join("set.toml")).unwrap_or_else(|e| panic!("{e:#}"));
-    let scores: Vec<_> = (sets.iter().zip(["Johnson-Cook", "Cowper-Symonds"]))
-        .map(|(set, name)| {
+    let scores: Vec<_> = (sets.iter())
+        .map(|(name, set)| {
             let fit = run_fit(set, Optimizer::LmExact, &|_| {
                 std::ops::ControlFlow::Continue(())
             })

@@ -4,7 +4,8 @@
 //! differences, the parameter sensitivities dσ/dp against fourth-order differences,
 //! plastic incompressibility det Fᵖ = 1, the elastic unloading slope, the reference
 //! (algorithm 3) against the fast (principal) return, uniaxial flow against the law's
-//! τ_y (eq. 4.52 for Johnson-Cook), whole-path sensitivities, and (Neo-Hooke) σ = ∂ψ/∂F Fᵀ/J (eq. 4.12-4.13).
+//! τ_y (eq. 4.52 for Johnson-Cook), whole-path sensitivities, and (Neo-Hooke)
+//! σ = ∂ψ/∂F Fᵀ/J (eq. 4.12-4.13).
 //!
 //! `cargo test -p materials` runs them on every shipped model (`tests/conformance.rs`);
 //! the `mpw verify` table shows the same numbers. Random deformations come from a fixed
@@ -12,6 +13,8 @@
 
 use crate::ad;
 use crate::driver::{self, LoadPath, Ramp, RateKind, Temperature};
+use crate::flow_stress::softening::ExponentialSoftening;
+use crate::flow_stress::{Composed, FlowStress, ThermalSoftening};
 use crate::material::{Model, State};
 use crate::neo_hooke::NeoHooke;
 use crate::plasticity::ElastoPlastic;
@@ -280,6 +283,36 @@ pub fn uniaxial_flow_error(m: &ElastoPlastic, rate: f64, theta: f64) -> f64 {
             (tau_xx / m.flow.tau_y(r.state.alpha, plastic_rate, theta, theta0) - 1.0).abs()
         })
         .fold(0.0, f64::max)
+}
+
+/// The parameters whose path sensitivities are checked: every flow-stress parameter but
+/// the reference rate α̇0 and θm (kinks of the clamped rate and thermal terms) and those
+/// that are zero (no relative difference step), and γ_TQ.
+pub fn path_parameters(m: &ElastoPlastic) -> Vec<&'static str> {
+    (m.flow.names().into_iter())
+        .filter(|n| !["alpha_dot0", "theta_m"].contains(n))
+        .filter(|n| m.param(n) != Some(0.0))
+        .chain(["gamma_tq"])
+        .collect()
+}
+
+/// `m` with the exponential thermal softening (`flow_stress::softening`) in place of its
+/// own: the factor no shipped parameter file uses, for the checks of every factor.
+pub fn with_exponential_softening(m: &ElastoPlastic) -> ElastoPlastic {
+    let mut out = *m;
+    let theta_m = m.param("theta_m").unwrap_or(1800.0);
+    let composed = match m.flow {
+        FlowStress::Composed(law) => law,
+        _ => panic!("a composed law"),
+    };
+    out.flow = FlowStress::Composed(Composed {
+        softening: ThermalSoftening::Exponential(ExponentialSoftening {
+            lambda: 1.1e-3,
+            theta_m,
+        }),
+        ..composed
+    });
+    out
 }
 
 /// dσ_xx(t)/dp over a whole adiabatic uniaxial compression path to −0.2 at 2000 1/s

@@ -217,18 +217,30 @@ impl Reader<'_> {
 
     /// The `[hardening]`, `[rate]` and `[softening]` sections of a composed law.
     fn composed(&self, root: &Table, theta0: f64) -> Result<Composed, ParamFileError> {
-        let (law, values) = self.factor(root, "hardening", &hardening::KEYWORDS, theta0, |k| {
-            Hardening::names_of(k)
-        })?;
-        let hardening = Hardening::from_keyword(law, |n| values(n)).expect("a known law");
-        let (law, values) = self.factor(root, "rate", &rate::KEYWORDS, theta0, |k| {
-            RateSensitivity::names_of(k)
-        })?;
-        let rate = RateSensitivity::from_keyword(law, |n| values(n)).expect("a known law");
-        let (law, values) = self.factor(root, "softening", &softening::KEYWORDS, theta0, |k| {
-            ThermalSoftening::names_of(k)
-        })?;
-        let softening = ThermalSoftening::from_keyword(law, |n| values(n)).expect("a known law");
+        let (law, values) = self.factor(
+            root,
+            "hardening",
+            &hardening::KEYWORDS,
+            theta0,
+            Hardening::names_of,
+        )?;
+        let hardening = Hardening::from_keyword(law, values).expect("a known law");
+        let (law, values) = self.factor(
+            root,
+            "rate",
+            &rate::KEYWORDS,
+            theta0,
+            RateSensitivity::names_of,
+        )?;
+        let rate = RateSensitivity::from_keyword(law, values).expect("a known law");
+        let (law, values) = self.factor(
+            root,
+            "softening",
+            &softening::KEYWORDS,
+            theta0,
+            ThermalSoftening::names_of,
+        )?;
+        let softening = ThermalSoftening::from_keyword(law, values).expect("a known law");
         Ok(Composed {
             hardening,
             rate,

@@ -136,7 +136,7 @@ pub const TABLE: [Parameter; 24] = [
         Range::plausible(
             0.0,
             0.1,
-            "a softening coefficient in 1/K, e.g. 1e-3 (per °C is the same; per K given?)",
+            "a softening coefficient in 1/K, e.g. 1e-3 (%/K or per 100 K given?)",
         ),
     ),
     entry("theta0", "thermal", Temperature, Range::positive()),

@@ -229,7 +229,7 @@ pub fn run(args: Args) -> Result<()> {
         );
         return super::fit_choice::run(&args, sets);
     }
-    let mut set = sets.into_iter().next().expect("the set as written");
+    let (_, mut set) = sets.into_iter().next().expect("the set as written");
     if let Some(s) = args.starts {
         set.starts = s.max(1);
     }

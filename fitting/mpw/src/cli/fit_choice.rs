@@ -14,20 +14,11 @@ use fitting::fit::statistics::model_choice::{best, score, Score};
 use std::fmt::Write;
 use std::path::Path;
 
-/// The laws of `sets` (the set as written first), fitted and compared.
-pub fn run(args: &Args, sets: Vec<FitSet>) -> Result<()> {
+/// The laws of `sets` (each with its name, the set as written first), fitted and compared.
+pub fn run(args: &Args, sets: Vec<(String, FitSet)>) -> Result<()> {
     let stop = crate::cli::interrupt::interrupt_flag()?;
     let mut scores = Vec::new();
-    for (k, mut set) in sets.into_iter().enumerate() {
-        let name = match k {
-            0 => set.material_name.clone(),
-            _ => set
-                .name
-                .rsplit(": ")
-                .next()
-                .unwrap_or(&set.name)
-                .to_string(),
-        };
+    for (k, (name, mut set)) in sets.into_iter().enumerate() {
         eprintln!("law {}: {name} ({} free)", k + 1, set.params.len());
         if let Some(s) = args.starts {
             set.starts = s.max(1);

@@ -87,19 +87,19 @@ impl FitSet {
     }
 
     /// The set as written, then one set per `[[candidate]]` law (its material and free
-    /// parameters, the same experiments), each named by its law.
-    pub fn load_candidates(path: &Path) -> Result<Vec<FitSet>> {
+    /// parameters, the same experiments), each with the law's name: the material's for the
+    /// set as written, the `[[candidate]]`'s own for the others.
+    pub fn load_candidates(path: &Path) -> Result<Vec<(String, FitSet)>> {
         let (set, text) = SetFile::read(path)?;
-        let count = set.candidates.len();
-        let mut sets = vec![Self::build(set, &text, path)?];
-        for k in 0..count {
-            let (set, _) = SetFile::read(path)?;
-            let name = set.candidates[k].name.clone();
-            let candidate = set
-                .with_candidate(k)
+        let written = Self::build(set.clone(), &text, path)?;
+        let mut sets = vec![(written.material_name.clone(), written)];
+        for (k, candidate) in set.candidates.iter().enumerate() {
+            let built = (set.clone().with_candidate(k))
                 .and_then(|set| Self::build(set, &text, path))
-                .with_context(|| format!("{}: [[candidate]] \"{name}\"", path.display()))?;
-            sets.push(candidate);
+                .with_context(|| {
+                    format!("{}: [[candidate]] \"{}\"", path.display(), candidate.name)
+                })?;
+            sets.push((candidate.name.clone(), built));
         }
         Ok(sets)
     }
@@ -134,7 +134,6 @@ impl FitSet {
     }
 
     fn build(set: SetFile, text: &str, path: &Path) -> Result<FitSet> {
-        let text = text.to_string();
         let folder = path.parent().unwrap_or(Path::new("."));
         // `file:line:column: `key`` of a key at the top level or of the k-th entry of a table
         let place = |table: Option<(&str, usize)>, key: &str| {

@@ -89,10 +89,10 @@ const SHPB_WINDOW: [f64; 2] = [15e-6, 115e-6];
 const SHPB_STEP: f64 = 0.25e-6;
 
 impl CandidateTest {
-    /// The test as an experiment of the set, its observations predicted by `material`
-    /// (the noise-free expectation at the fitted parameters).
-    pub fn block(&self, material: &Material) -> Result<Block> {
-        let (model, x): (Box<dyn ExperimentModel>, Vec<f64>) = match *self {
+    /// The test's single-point model at `material`, and the abscissa of its observations
+    /// (tensile: engineering strain; SHPB: time [s]).
+    fn model(&self, material: &Material) -> Result<(Box<dyn ExperimentModel>, Vec<f64>)> {
+        Ok(match *self {
             CandidateTest::Tensile { rate, temperature } => {
                 let strain: Vec<f64> = (1..=TENSILE_SAMPLES)
                     .map(|k| TENSILE_STRAIN * k as f64 / TENSILE_SAMPLES as f64)
@@ -134,7 +134,13 @@ impl CandidateTest {
                 let x = samples.iter().map(|&k| times[k]).collect();
                 (Box::new(SinglePoint::new(model)), x)
             }
-        };
+        })
+    }
+
+    /// The test as an experiment of the set, its observations predicted by `material`
+    /// (the noise-free expectation at the fitted parameters).
+    pub fn block(&self, material: &Material) -> Result<Block> {
+        let (model, x) = self.model(material)?;
         let measured = model.predict(material)?;
         let mut block = Block::new(
             &self.to_string(),
@@ -152,6 +158,16 @@ impl CandidateTest {
             | CandidateTest::Shpb { rate, temperature } => (rate, temperature),
         };
         Ok(block)
+    }
+
+    /// The Jacobian of the test's normalized observations in `free` at `material`, as
+    /// the test would enter the objective with weight 1 (one model run with its
+    /// sensitivities).
+    fn jacobian(&self, material: &Material, free: &[&str]) -> Result<DMatrix<f64>> {
+        let (model, _) = self.model(material)?;
+        let (predicted, jacobian) = model.predict_with_jacobian(material, free)?;
+        let scale = predicted.iter().map(|y| y.abs()).sum::<f64>() / predicted.len() as f64;
+        Ok(jacobian * ((1.0 / predicted.len() as f64).sqrt() / scale))
     }
 }
 
@@ -238,10 +254,7 @@ pub fn rank(
     let now = uncertainty(&information, s2)?;
     let mut ranked = Vec::new();
     for &test in candidates {
-        let block = test
-            .block(material)
-            .with_context(|| format!("candidate {test}"))?;
-        let (_, j) = normalized(&block, material, free)?;
+        let j = (test.jacobian(material, free)).with_context(|| format!("candidate {test}"))?;
         let after = uncertainty(&(&information + j.transpose() * j), s2)?;
         let shrink = ((after.ln_det - now.ln_det) / (2.0 * k as f64)).exp();
         ranked.push(Ranked {

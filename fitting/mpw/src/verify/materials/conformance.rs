@@ -93,9 +93,10 @@ pub fn check_uniaxial(name: &str, law: &str, m: &ElastoPlastic) -> Vec<Row> {
         .collect()
 }
 
-/// dσ_xx(t)/dp over a whole adiabatic uniaxial compression path.
-pub fn check_path_sensitivities(name: &str, m: &ElastoPlastic, params: &[&'static str]) -> Row {
-    let (worst, param) = c::path_sensitivity_error(m, params);
+/// dσ_xx(t)/dp over a whole adiabatic uniaxial compression path, for every parameter of
+/// `conformance::path_parameters`.
+pub fn check_path_sensitivities(name: &str, m: &ElastoPlastic) -> Row {
+    let (worst, param) = c::path_sensitivity_error(m, &c::path_parameters(m));
     Row::at_most(format!("{name}: path dσ/dp vs FD"), worst, BOUND_DERIVATIVE)
         .with_note(format!("worst: {param}"))
 }
