@@ -8,7 +8,10 @@
 //! - `orthogonal`: the orthogonal cut of §12.3 (42CrMo4, a tool moving to −x lifting a
 //!   chip of depth f_y) and its sensitivity matrix;
 //! - `record`: what a cutting run leaves: the tool force per unit thickness against time
-//!   and relative feed, the feed reached and, for a run that stopped, why;
+//!   and relative feed, its snapshots, and the run's record (points, steps, wall time,
+//!   how far it got and, for a run that stopped, why);
+//! - `orthogonal_result`: an orthogonal run read back: filtered forces, their steady
+//!   values and drift, the filter's noise, the shear angle per snapshot;
 //! - `shear_angle`: the shear angle φ_s measured from the plastic strain rate field;
 //! - `merchant`: Merchant's cutting force from the measured shear angle with the JC flow
 //!   stress of the shear zone, an independent check of the force level;
@@ -20,6 +23,7 @@
 
 pub mod merchant;
 pub mod orthogonal;
+pub mod orthogonal_result;
 pub mod record;
 pub mod repeatability;
 pub mod shear_angle;

@@ -1,10 +1,10 @@
 //! What a cutting run leaves: the tool's contact force per unit thickness against time (read
 //! from the run's history, columns `time_s` and `<tool>_force_<axis>_n_per_m`), and how far
-//! the run got. The force on the tool is the reaction of the workpiece: a punch pressing
+//! the run got (`RunRecord`, the run folder's `run.toml`). The force on the tool is the reaction of the workpiece: a punch pressing
 //! down feels f_y > 0.
 
 use anyhow::{bail, Context, Result};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The tool force history of one run.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -77,5 +77,58 @@ impl ToolForce {
     /// The time of the last history row [s].
     pub fn last_time(&self) -> f64 {
         *self.time_s.last().unwrap_or(&0.0)
+    }
+}
+
+/// The snapshots (`*.vtp`) of a run folder in time order.
+pub fn snapshot_files(run: &Path) -> Result<Vec<PathBuf>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(run)
+        .with_context(|| format!("{}: cannot read the run folder", run.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "vtp"))
+        .collect();
+    files.sort();
+    Ok(files)
+}
+
+/// How a run went, kept beside its output as `run.toml`: enough to chart it in a map
+/// without running it again.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct RunRecord {
+    pub points: usize,
+    pub steps: usize,
+    /// Time step [s].
+    pub dt_s: f64,
+    /// Wall time of the run [s] and the threads it had.
+    pub wall_s: f64,
+    pub threads: usize,
+    /// Simulated time reached [s] and the end the scene asked for.
+    pub time_reached_s: f64,
+    pub end_s: f64,
+    /// Why the run stopped before its end.
+    pub failure: Option<String>,
+}
+
+impl RunRecord {
+    /// The file name in a run folder.
+    pub const FILE: &'static str = "run.toml";
+
+    pub fn write(&self, run: &Path) -> Result<()> {
+        let path = run.join(Self::FILE);
+        std::fs::write(&path, toml::to_string(self)?)
+            .with_context(|| format!("{}: cannot write", path.display()))
+    }
+
+    /// The record of the run in folder `run`.
+    pub fn read(run: &Path) -> Result<RunRecord> {
+        let path = run.join(Self::FILE);
+        let text = std::fs::read_to_string(&path)
+            .with_context(|| format!("{}: no record of a finished run", path.display()))?;
+        toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {}", path.display(), e.message()))
+    }
+
+    /// Particle-steps per second.
+    pub fn throughput(&self) -> f64 {
+        (self.points * self.steps) as f64 / self.wall_s
     }
 }

@@ -1,7 +1,8 @@
-//! `mpw cut`: the shipped scenes of the vertical cut are what `mpw cut scenes` writes, and
-//! a short run of set G0 (grid shift, springs) brings the punch into contact: the force on
-//! it rises from zero, the force table and chart are written and the feed is reported; a
-//! stability map of two cells writes its table and one chart per variant.
+//! `mpw cut`: the shipped scenes of both cuts are what `mpw cut scenes` writes, and a short
+//! run of set G0 (grid shift, springs) brings the punch into contact: the force on it rises
+//! from zero, the force table and chart are written and the feed is reported; a stability
+//! map of two cells writes its table and one chart per variant, and drawn again runs
+//! nothing; the orthogonal map gives a cell's steady cutting force.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -58,8 +59,11 @@ fn the_shipped_cutting_scenes_are_the_generator_s() {
         );
         count += 1;
     }
-    assert_eq!(count, 10, "one scene per set of table 12.2");
-    assert_eq!(std::fs::read_dir(&shipped).unwrap().count(), 10);
+    assert_eq!(
+        count, 19,
+        "one scene per set of table 12.2 and per cell of the orthogonal sensitivity matrix"
+    );
+    assert_eq!(std::fs::read_dir(&shipped).unwrap().count(), 19);
 }
 
 #[test]
@@ -128,17 +132,22 @@ fn a_small_stability_map_writes_its_cells() {
     // the same cells from the process pool, but for the wall times
     let pooled = dir.join("pool");
     map(pooled.to_str().unwrap(), "pool");
+    // wall time, threads and throughput are each run's own
     let without_wall = |t: &str| -> Vec<String> {
         t.lines()
             .map(|l| {
                 let mut c: Vec<&str> = l.split(',').collect();
-                c.remove(4);
+                c.drain(5..8);
                 c.join(",")
             })
             .collect()
     };
     let pooled = std::fs::read_to_string(pooled.join("map.csv")).unwrap();
     assert_eq!(without_wall(&table), without_wall(&pooled));
+    // a map drawn again over finished cells runs none of them and gives the same table
+    let again = map(out, "in-process");
+    assert!(again.contains("2 cells, 2 of them already run"), "{again}");
+    assert_eq!(std::fs::read_to_string(dir.join("map.csv")).unwrap(), table);
     let bad = mpw(&[
         "cut",
         "map",
@@ -148,6 +157,56 @@ fn a_small_stability_map_writes_its_cells() {
         dir.to_str().unwrap(),
     ]);
     assert!(String::from_utf8_lossy(&bad.stderr).contains("linear+tilt: expected a shape function"));
+}
+
+/// The orthogonal cut's map on a coarse grid for 24 µs: the cell's run, its steady cutting
+/// force and shear angle in `map.csv`, the force the one `mpw cut orthogonal` run of the
+/// same scene gives.
+#[test]
+fn a_small_orthogonal_map_gives_the_steady_cutting_force() {
+    let dir = std::env::temp_dir().join(format!("mpw-cut-map-orth-{}", std::process::id()));
+    let out = dir.join("map");
+    let (spacing, points, end) = ("4e-4", "20", "24e-6");
+    mpw_ok(&[
+        "cut",
+        "map",
+        "--cut",
+        "orthogonal",
+        "--spacings",
+        spacing,
+        "--points",
+        points,
+        "--end",
+        end,
+        "--executor",
+        "in-process",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let rows = std::fs::read_to_string(out.join("map.csv")).unwrap();
+    let cell: Vec<&str> = rows.lines().nth(1).unwrap().split(',').collect();
+    assert_eq!(&cell[..3], ["linear", "4e-4", "20"], "{rows}");
+    let (fx, phi): (f64, f64) = (cell[3].parse().unwrap(), cell[4].parse().unwrap());
+    assert!(fx > 0.0 && phi > 0.0 && phi < 90.0, "{rows}");
+    let single = mpw_ok(&[
+        "cut",
+        "orthogonal",
+        "--spacing",
+        spacing,
+        "--points",
+        points,
+        "--end",
+        end,
+        "--out",
+        dir.join("single").to_str().unwrap(),
+    ]);
+    let printed = format!("f_x {:.3} MN/m", fx * 1e-6);
+    assert!(
+        single.contains(&printed),
+        "map {printed}, single run: {single}"
+    );
+    assert!(out.join("map_linear.png").is_file());
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// Two seeds to 2 % feed: the spread table has mean, std and CV per sample, CV = std/|mean|.

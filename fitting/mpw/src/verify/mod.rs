@@ -5,6 +5,7 @@
 //! registered once in `CATALOGUE`; `table` runs them in that order.
 
 pub mod cutting;
+pub mod cutting_orthogonal;
 pub mod data;
 pub mod fit;
 pub mod materials;
@@ -28,7 +29,7 @@ pub struct Inputs<'a> {
 pub type Part = fn(&Inputs) -> anyhow::Result<Vec<Row>>;
 
 /// The catalogue, part by part, in table order.
-pub const CATALOGUE: [(&str, Part); 8] = [
+pub const CATALOGUE: [(&str, Part); 9] = [
     ("materials", materials::rows),
     ("shpb", shpb::rows),
     ("fit", fit::rows),
@@ -37,6 +38,7 @@ pub const CATALOGUE: [(&str, Part); 8] = [
     ("mpm", mpm::rows),
     ("shpb-model", shpb_model::rows),
     ("cutting", cutting::rows),
+    ("cutting-orthogonal", cutting_orthogonal::rows),
 ];
 
 /// Every row of the catalogue; a part that cannot run, or two rows of one name (two

@@ -1,11 +1,22 @@
-//! `mpw cut map`: the vertical cut's stability map: one run per variant × grid spacing ×
-//! points over the thickness, each a `scene` task of an executor (`--executor pool` runs
-//! them side by side, `slurm` on a cluster); the feed each reached and its wall time.
+//! `mpw cut map`: where each method fails. One run per variant × grid spacing × points over
+//! the height, each a `scene` task of an executor (`--executor pool` runs them side by
+//! side, `slurm` on a cluster), charted as a map per variant: for the vertical cut the
+//! relative feed reached, for the orthogonal cut (`--cut orthogonal`, the thesis's
+//! sensitivity matrix) the time reached with the steady cutting force, each with the run's
+//! wall time.
+//!
+//! Every cell keeps its run in its own folder (`<variant>_dx<spacing>_ny<points>`: scene,
+//! history, snapshots, `run.toml`); a cell whose folder already holds a finished run of the
+//! same scene is not run again, so a map can be resumed, or completed from runs made one
+//! by one with `mpw cut vertical` / `mpw cut orthogonal --out` into those folders.
 
-use super::{absolute, vertical_scene_text};
+use super::{absolute, orthogonal_scene_text, vertical_scene_text};
 use crate::cli::executor_args::ExecutorArgs;
 use crate::cli::progress::ProgressLine;
 use anyhow::{Context, Result};
+use cutting::orthogonal::{OrthogonalCut, Resolution};
+use cutting::orthogonal_result::OrthogonalResult;
+use cutting::record::RunRecord;
 use cutting::vertical::{Discretization, VerticalCut};
 use cutting::workpiece::RunOptions;
 use runs::{Batch, RunDescription};
@@ -13,57 +24,67 @@ use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
 pub struct MapArgs {
-    /// Grid spacings [m].
-    #[arg(long, value_delimiter = ',', default_value = "1e-4,6.25e-5,5e-5")]
+    /// Which cut: vertical (feed reached) or orthogonal (time reached, steady f_x).
+    #[arg(long, default_value = "vertical")]
+    pub cut: String,
+    /// Grid spacings [m] (default: vertical 1e-4,6.25e-5,5e-5; orthogonal 2e-4,1e-4,8e-5).
+    #[arg(long, value_delimiter = ',')]
     pub spacings: Vec<f64>,
-    /// Points over the sheet's thickness.
-    #[arg(long, value_delimiter = ',', default_value = "60,100,200")]
+    /// Points over the height (default: vertical 60,100,200; orthogonal 80,100,150).
+    #[arg(long, value_delimiter = ',')]
     pub points: Vec<usize>,
-    /// Variants: a shape function, `+shift` for the grid shift with springs
-    /// (linear, linear+shift, cpdi, cpdi+shift, ...).
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "linear,linear+shift,cpdi,cpdi+shift"
-    )]
+    /// Variants: a shape function, for the vertical cut `+shift` for the grid shift with
+    /// springs (default: vertical linear,linear+shift,cpdi,cpdi+shift; orthogonal, which
+    /// always shifts the grid, linear).
+    #[arg(long, value_delimiter = ',')]
     pub variants: Vec<String>,
-    /// Relative feed at which each run ends.
+    /// Vertical cut: the relative feed at which each run ends.
     #[arg(long, default_value_t = 1.2)]
     pub feed: f64,
-    #[arg(long, default_value = "data/materials/al7075_t6.toml")]
-    pub material: PathBuf,
-    /// Output folder.
-    #[arg(long, default_value = "out/cut_map")]
-    pub out: PathBuf,
+    /// Orthogonal cut: the run time [s].
+    #[arg(long, default_value_t = 80e-6)]
+    pub end: f64,
+    /// Material file (default: the cut's material in data/materials).
+    #[arg(long)]
+    pub material: Option<PathBuf>,
+    /// Output folder (default out/cut_map, or out/cut_map_orthogonal).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
     #[command(flatten)]
     pub executor: ExecutorArgs,
 }
 
-/// One cell of the stability map.
-struct Cell {
-    variant: String,
-    spacing: f64,
-    points: usize,
-    feed: f64,
-    wall_s: f64,
-    stop: String,
+/// The cut a map is drawn for.
+enum Cut {
+    Vertical { cut: VerticalCut, end_feed: f64 },
+    Orthogonal(OrthogonalCut),
 }
 
-pub fn map(args: MapArgs) -> Result<()> {
-    let material = absolute(&args.material)?;
-    let cut = VerticalCut::default();
-    let mut cells = Vec::new();
-    let mut descriptions = Vec::new();
-    for variant in &args.variants {
+impl Cut {
+    fn name(&self) -> &'static str {
+        match self {
+            Cut::Vertical { .. } => "vertical",
+            Cut::Orthogonal(_) => "orthogonal",
+        }
+    }
+
+    /// The scene text of one cell.
+    fn scene(
+        &self,
+        variant: &str,
+        spacing: f64,
+        points_y: usize,
+        material: &str,
+    ) -> Result<String> {
         let (kernel, shift) = match variant.split_once('+') {
             Some((k, "shift")) => (k, true),
-            None => (variant.as_str(), false),
+            None => (variant, false),
             Some(_) => {
                 anyhow::bail!("--variants {variant}: expected a shape function, optionally +shift")
             }
         };
-        for &spacing in &args.spacings {
-            for &points_y in &args.points {
+        match self {
+            Cut::Vertical { cut, end_feed } => {
                 let set = Discretization {
                     name: "map",
                     spacing,
@@ -73,117 +94,333 @@ pub fn map(args: MapArgs) -> Result<()> {
                 let options = RunOptions {
                     shape_function: kernel.to_string(),
                     snapshots: 2,
-                    ..RunOptions::new(&material)
+                    ..RunOptions::new(material)
                 };
-                let scene = args
-                    .out
-                    .join(format!("{variant}_dx{spacing}_ny{points_y}"))
-                    .join("scene.toml");
-                std::fs::create_dir_all(scene.parent().expect("a folder"))?;
-                std::fs::write(
-                    &scene,
-                    vertical_scene_text(&cut, &set, args.feed, &options)?,
-                )
-                .with_context(|| format!("cannot write {}", scene.display()))?;
-                let mut d = RunDescription::new("scene", &scene.canonicalize()?);
-                d.returns = vec![
-                    "run.time".into(),
-                    "run.steps".into(),
-                    "run.particles".into(),
-                ];
-                descriptions.push(d);
+                vertical_scene_text(cut, &set, *end_feed, &options)
+            }
+            Cut::Orthogonal(cut) => {
+                if shift {
+                    anyhow::bail!("--variants {variant}: the orthogonal cut always shifts the grid; give the shape function alone");
+                }
+                let options = RunOptions {
+                    shape_function: kernel.to_string(),
+                    ..RunOptions::new(material)
+                };
+                let resolution = Resolution { spacing, points_y };
+                orthogonal_scene_text(cut, &resolution, &options)
+            }
+        }
+    }
+
+    /// The columns `measure` adds to `map.csv`.
+    fn columns(&self) -> &'static str {
+        match self {
+            Cut::Vertical { .. } => "relative_feed_reached",
+            Cut::Orthogonal(_) => "steady_force_x_n_per_m,shear_angle_deg",
+        }
+    }
+
+    /// How far a run got as a fraction of its end, the cell's text and the run's values
+    /// for `map.csv` (`columns`).
+    fn measure(&self, folder: &Path, record: &RunRecord) -> Result<(f64, String, String)> {
+        let wall = format!("{:.0} s", record.wall_s);
+        Ok(match self {
+            Cut::Vertical { cut, end_feed } => {
+                let feed = match record.failure {
+                    None => *end_feed,
+                    Some(_) => cut.feed_at(record.time_reached_s),
+                };
+                let text = match record.failure {
+                    None => format!("ran through\n{wall}"),
+                    Some(_) => format!("{:.0} %\n{wall}", 100.0 * feed),
+                };
+                (feed / end_feed, text, format!("{feed:e}"))
+            }
+            Cut::Orthogonal(cut) => {
+                let result = OrthogonalResult::read(folder, cut)?;
+                let fx = result.steady_force().map_or(f64::NAN, |[fx, _]| fx);
+                let phi = result.shear_angle().map_or(f64::NAN, |(phi, _)| phi);
+                let reach = match record.failure {
+                    None => "ran through".to_string(),
+                    Some(_) => format!("{:.1} µs", record.time_reached_s * 1e6),
+                };
+                let text = format!("{reach}\nf_x {:.2} MN/m\n{wall}", fx * 1e-6);
+                let fraction = record.time_reached_s / record.end_s;
+                (fraction, text, format!("{fx:e},{phi:e}"))
+            }
+        })
+    }
+}
+
+/// One cell of a map.
+struct Cell {
+    variant: String,
+    spacing: f64,
+    points: usize,
+    folder: PathBuf,
+    record: Option<RunRecord>,
+    /// Why the cell has no run.
+    error: Option<String>,
+}
+
+pub fn map(mut args: MapArgs) -> Result<()> {
+    let cut = defaults(&mut args)?;
+    let out = (args.out.clone()).unwrap_or_else(|| match cut {
+        Cut::Vertical { .. } => PathBuf::from("out/cut_map"),
+        Cut::Orthogonal(_) => PathBuf::from("out/cut_map_orthogonal"),
+    });
+    let material = absolute(args.material.as_deref().expect("defaulted"))?;
+    let mut cells = Vec::new();
+    let mut to_run = Vec::new();
+    for variant in &args.variants {
+        for &spacing in &args.spacings {
+            for &points in &args.points {
+                let folder = out.join(format!("{variant}_dx{spacing}_ny{points}"));
+                let text = cut.scene(variant, spacing, points, &material)?;
+                let record = finished_run(&folder, &text);
+                if record.is_none() {
+                    prepare(&folder, &text)?;
+                    to_run.push(cells.len());
+                }
                 cells.push(Cell {
                     variant: variant.clone(),
                     spacing,
-                    points: points_y,
-                    feed: f64::NAN,
-                    wall_s: f64::NAN,
-                    stop: String::new(),
+                    points,
+                    folder,
+                    record,
+                    error: None,
                 });
             }
         }
     }
+    println!(
+        "{} cells, {} of them already run",
+        cells.len(),
+        cells.len() - to_run.len()
+    );
+    if !to_run.is_empty() {
+        run_cells(&mut cells, &to_run, &args.executor, &out)?;
+    }
+    report(&cut, &args, &cells, &out)
+}
+
+/// The cut of `args.cut`, with the defaults of that cut filled into `args`.
+fn defaults(args: &mut MapArgs) -> Result<Cut> {
+    let (cut, spacings, points, variants, material): (Cut, &[f64], &[usize], &[&str], _) =
+        match args.cut.as_str() {
+            "vertical" => (
+                Cut::Vertical {
+                    cut: VerticalCut::default(),
+                    end_feed: args.feed,
+                },
+                &[1e-4, 6.25e-5, 5e-5],
+                &[60, 100, 200],
+                &["linear", "linear+shift", "cpdi", "cpdi+shift"],
+                "data/materials/al7075_t6.toml",
+            ),
+            "orthogonal" => (
+                Cut::Orthogonal(OrthogonalCut {
+                    end: args.end,
+                    ..OrthogonalCut::default()
+                }),
+                &[2e-4, 1e-4, 8e-5],
+                &[80, 100, 150],
+                &["linear"],
+                "data/materials/42crmo4_qt660.toml",
+            ),
+            other => anyhow::bail!("--cut \"{other}\": expected \"vertical\" or \"orthogonal\""),
+        };
+    if args.spacings.is_empty() {
+        args.spacings = spacings.to_vec();
+    }
+    if args.points.is_empty() {
+        args.points = points.to_vec();
+    }
+    if args.variants.is_empty() {
+        args.variants = variants.iter().map(|v| v.to_string()).collect();
+    }
+    args.material.get_or_insert_with(|| PathBuf::from(material));
+    Ok(cut)
+}
+
+/// The record of a finished run of scene `text` in `folder`, if there is one.
+fn finished_run(folder: &Path, text: &str) -> Option<RunRecord> {
+    let written = std::fs::read_to_string(folder.join("scene.toml")).ok()?;
+    (written == text)
+        .then(|| RunRecord::read(folder).ok())
+        .flatten()
+}
+
+/// An empty `folder` with the scene `text` (a run of another scene, or an unfinished one,
+/// is removed first: none of its files may be read as this run's).
+fn prepare(folder: &Path, text: &str) -> Result<()> {
+    if folder.exists() {
+        std::fs::remove_dir_all(folder)
+            .with_context(|| format!("{}: cannot clear", folder.display()))?;
+    }
+    std::fs::create_dir_all(folder)
+        .with_context(|| format!("{}: cannot create", folder.display()))?;
+    std::fs::write(folder.join("scene.toml"), text)
+        .with_context(|| format!("{}: cannot write the scene", folder.display()))
+}
+
+/// Run the cells `to_run` through the executor; each run's output is moved into its
+/// cell's folder with its record.
+fn run_cells(
+    cells: &mut [Cell],
+    to_run: &[usize],
+    executor: &ExecutorArgs,
+    out: &Path,
+) -> Result<()> {
+    let mut descriptions = Vec::new();
+    for &i in to_run {
+        let scene = cells[i].folder.join("scene.toml").canonicalize()?;
+        let mut d = RunDescription::new("scene", &scene);
+        d.returns = ["run.time", "run.steps", "run.dt", "run.particles"]
+            .map(String::from)
+            .to_vec();
+        descriptions.push(d);
+    }
     let stop = crate::cli::interrupt::interrupt_flag()?;
     let execute = |d: &RunDescription, dir: &Path| crate::tasks::execute(d, dir, Some(&stop));
-    let (executor, dir) = args
-        .executor
-        .build("mpw-cut-map", &execute, args.out.join("tasks"))?;
+    let (executor, dir) = executor.build("mpw-cut-map", &execute, out.join("tasks"))?;
     let batch = Batch::create(&dir, &descriptions)?;
     println!(
-        "{} runs ({}), their output in {}",
-        cells.len(),
+        "{} runs ({}) in {}",
+        to_run.len(),
         executor.describe(),
         batch.dir.display()
     );
     let line = ProgressLine::default();
     let reports = executor.run(&batch, &stop, &|state| line.show("map", &state.to_string()))?;
     line.finish();
-    for (cell, report) in cells.iter_mut().zip(reports) {
+    for (report, &i) in reports.into_iter().zip(to_run) {
+        let cell = &mut cells[i];
         match report.result {
-            Err(f) => cell.stop = format!("not run: {f}"),
+            Err(f) => cell.error = Some(format!("not run: {f}")),
             Ok((outcome, manifest)) => {
-                let time = outcome.value("run.time").unwrap_or(f64::NAN);
-                cell.wall_s = manifest.wall_seconds;
-                (cell.feed, cell.stop) = match outcome.failure {
-                    None => (args.feed, "ran through".to_string()),
-                    Some(failure) => (cut.feed_at(time), failure),
+                let value = |name: &str| outcome.value(name).unwrap_or(f64::NAN);
+                let record = RunRecord {
+                    points: value("run.particles") as usize,
+                    steps: value("run.steps") as usize,
+                    dt_s: value("run.dt"),
+                    wall_s: manifest.wall_seconds,
+                    threads: manifest.threads,
+                    time_reached_s: value("run.time"),
+                    end_s: scene_end(&cell.folder)?,
+                    failure: outcome.failure,
                 };
+                move_output(&batch.task(report.index).run(), &cell.folder)?;
+                record.write(&cell.folder)?;
+                cell.record = Some(record);
             }
         }
-        println!(
-            "{}, dx = {} m, {} points over the thickness: {} ({:.0} s)",
-            cell.variant, cell.spacing, cell.points, cell.stop, cell.wall_s
-        );
     }
-    let mut csv = String::from("variant,spacing_m,points_y,relative_feed_reached,wall_s,stop\n");
-    for c in &cells {
-        csv += &format!(
-            "{},{:e},{},{:e},{:e},\"{}\"\n",
+    Ok(())
+}
+
+/// The end time [s] of the scene in `folder`.
+fn scene_end(folder: &Path) -> Result<f64> {
+    Ok(mpm_core::scene::load(&folder.join("scene.toml"))?.end)
+}
+
+/// Every file of the run folder `from` into `to` (the scene there stays).
+fn move_output(from: &Path, to: &Path) -> Result<()> {
+    for entry in
+        std::fs::read_dir(from).with_context(|| format!("{}: no run output", from.display()))?
+    {
+        let path = entry?.path();
+        let name = path.file_name().expect("a file");
+        if name != "scene.toml" {
+            std::fs::rename(&path, to.join(name))
+                .with_context(|| format!("cannot move {} into {}", path.display(), to.display()))?;
+        }
+    }
+    Ok(())
+}
+
+/// Print each cell, write `map.csv` and one chart per variant.
+fn report(cut: &Cut, args: &MapArgs, cells: &[Cell], out: &Path) -> Result<()> {
+    let mut csv = format!(
+        "variant,spacing_m,points_y,{},time_reached_s,wall_s,threads,particle_steps_per_s,stop\n",
+        cut.columns()
+    );
+    let mut drawn = Vec::new();
+    for c in cells {
+        let (fraction, text, values) = match (&c.record, &c.error) {
+            (Some(r), _) => cut.measure(&c.folder, r)?,
+            (None, e) => (
+                f64::NAN,
+                e.clone().unwrap_or_else(|| "not run".into()),
+                String::new(),
+            ),
+        };
+        println!(
+            "{}, dx = {} m, {} points over the height: {}",
             c.variant,
             c.spacing,
             c.points,
-            c.feed,
-            c.wall_s,
-            c.stop.replace('"', "'")
+            text.replace('\n', ", ")
         );
-    }
-    std::fs::create_dir_all(&args.out)?;
-    std::fs::write(args.out.join("map.csv"), csv)?;
-    for variant in &args.variants {
-        let of: Vec<&Cell> = cells.iter().filter(|c| &c.variant == variant).collect();
-        crate::charts::cell_map::CellMap {
-            title: format!("vertical cut, {variant}: relative feed reached (wall time)"),
-            x_label: "grid spacing [mm]".into(),
-            y_label: "points over the thickness".into(),
-            columns: args
-                .spacings
-                .iter()
-                .map(|s| format!("{}", s * 1e3))
-                .collect(),
-            rows: args.points.iter().map(|n| n.to_string()).collect(),
-            cells: of
-                .iter()
-                .map(|c| {
-                    let column = args.spacings.iter().position(|&s| s == c.spacing).unwrap();
-                    let row = args.points.iter().position(|&n| n == c.points).unwrap();
-                    let text = match c.feed >= args.feed {
-                        _ if c.feed.is_nan() => "not run".to_string(),
-                        true => format!("ran through\n{:.0} s", c.wall_s),
-                        false => format!("{:.0} %\n{:.0} s", 100.0 * c.feed, c.wall_s),
-                    };
-                    (column, row, c.feed.max(0.0) / args.feed, text)
-                })
-                .collect(),
+        if let Some(r) = &c.record {
+            csv += &format!(
+                "{},{:e},{},{values},{:e},{:e},{},{:e},\"{}\"\n",
+                c.variant,
+                c.spacing,
+                c.points,
+                r.time_reached_s,
+                r.wall_s,
+                r.threads,
+                r.throughput(),
+                r.failure
+                    .as_deref()
+                    .unwrap_or("ran through")
+                    .replace('"', "'")
+            );
         }
-        .write_png(
-            &args
-                .out
-                .join(format!("map_{}.png", variant.replace('+', "_"))),
-        )?;
+        drawn.push((fraction, text));
     }
-    println!(
-        "map.csv and one chart per variant in {}",
-        args.out.display()
-    );
+    std::fs::create_dir_all(out)?;
+    std::fs::write(out.join("map.csv"), csv)?;
+    for variant in &args.variants {
+        chart(cut, args, cells, &drawn, variant, out)?;
+    }
+    println!("map.csv and one chart per variant in {}", out.display());
     Ok(())
+}
+
+fn chart(
+    cut: &Cut,
+    args: &MapArgs,
+    cells: &[Cell],
+    drawn: &[(f64, String)],
+    variant: &str,
+    out: &Path,
+) -> Result<()> {
+    let what = match cut {
+        Cut::Vertical { .. } => "relative feed reached (wall time)",
+        Cut::Orthogonal(_) => "time reached, steady f_x (wall time)",
+    };
+    crate::charts::cell_map::CellMap {
+        title: format!("{} cut, {variant}: {what}", cut.name()),
+        x_label: "grid spacing [mm]".into(),
+        y_label: "points over the height".into(),
+        columns: args
+            .spacings
+            .iter()
+            .map(|s| format!("{}", s * 1e3))
+            .collect(),
+        rows: args.points.iter().map(|n| n.to_string()).collect(),
+        cells: cells
+            .iter()
+            .zip(drawn)
+            .filter(|(c, _)| c.variant == variant)
+            .map(|(c, (fraction, text))| {
+                let column = args.spacings.iter().position(|&s| s == c.spacing).unwrap();
+                let row = args.points.iter().position(|&n| n == c.points).unwrap();
+                (column, row, fraction.max(0.0), text.clone())
+            })
+            .collect(),
+    }
+    .write_png(&out.join(format!("map_{}.png", variant.replace('+', "_"))))
 }

@@ -9,16 +9,19 @@
 //!   the shear angle in each snapshot from 20 µs on (from the chip's flow, and the
 //!   strain-rate band with its contrast), the steady cutting force against Merchant's
 //!   estimate from the mean angle, and a picture of the chip (`chip.png`).
-//! - `mpw cut map`: the stability map of the vertical cut: one run per grid spacing ×
-//!   points over the thickness, for each variant (shape function, grid shift), the feed
-//!   reached and the wall time in each cell (`map.csv`, `map_<variant>.png`).
+//! - `mpw cut map [--cut orthogonal]`: the stability map: one run per grid spacing ×
+//!   points over the height, for each variant (shape function, grid shift), the feed (or
+//!   time) reached and the wall time in each cell, for the orthogonal cut with its steady
+//!   cutting force (`map.csv`, `map_<variant>.png`).
 //! - `mpw cut repeat --set G0 --seeds 1,2,3,4,5`: the vertical cut once per grid-shift
 //!   seed; the punch force's mean ± sample standard deviation and CV(t) per history sample
 //!   (`repeat.csv`, `repeat.png`).
-//! - `mpw cut scenes`: every set's scene into `data/scenes/cutting/` (the shipped ones).
+//! - `mpw cut scenes`: the scene of every vertical set and every cell of the orthogonal
+//!   sensitivity matrix into `data/scenes/cutting/` (the shipped ones).
 //!
 //! Each run's folder holds its scene (`scene.toml`, runnable with `mpw simulate`), history,
-//! snapshots and results as `simulate` writes them.
+//! snapshots and results as `simulate` writes them, and its record (`run.toml`: points,
+//! steps, time step, wall time, how far it got).
 
 mod map;
 mod orthogonal;
@@ -33,6 +36,7 @@ pub use vertical::VerticalArgs;
 
 use anyhow::{Context, Result};
 use cutting::orthogonal::{OrthogonalCut, Resolution};
+use cutting::record::RunRecord;
 use cutting::vertical::{Discretization, VerticalCut, SETS};
 use cutting::workpiece::RunOptions;
 use mpm_core::run::RunSummary;
@@ -44,11 +48,12 @@ pub enum Cut {
     Vertical(VerticalArgs),
     /// Run the orthogonal cut (42CrMo4): forces, shear angle, Merchant's estimate, chip.
     Orthogonal(OrthogonalArgs),
-    /// The vertical cut's stability map: feed reached over spacing × points per variant.
+    /// Stability maps: feed (vertical) or time (orthogonal) reached over spacing × points.
     Map(MapArgs),
     /// The vertical cut once per grid-shift seed: mean, spread and CV(t) of the punch force.
     Repeat(RepeatArgs),
-    /// Write the scene of every set of table 12.2 into a folder.
+    /// Write the scene of every set of table 12.2 and of every cell of the orthogonal
+    /// cut's sensitivity matrix into a folder.
     Scenes {
         #[arg(long, default_value = "data/scenes/cutting")]
         out: PathBuf,
@@ -113,6 +118,17 @@ fn scenes(out: &Path) -> Result<()> {
             )?,
         )
         .with_context(|| format!("{}: cannot write", path.display()))?;
+        println!("{}", path.display());
+    }
+    let cut = OrthogonalCut::default();
+    for resolution in cutting::orthogonal::sensitivity_matrix() {
+        let path = out.join(format!(
+            "orthogonal_dx{}_ny{}.toml",
+            resolution.spacing, resolution.points_y
+        ));
+        let options = RunOptions::new(cutting::orthogonal::MATERIAL);
+        std::fs::write(&path, orthogonal_scene_text(&cut, &resolution, &options)?)
+            .with_context(|| format!("{}: cannot write", path.display()))?;
         println!("{}", path.display());
     }
     Ok(())
@@ -196,15 +212,33 @@ impl CutRun {
         let scene_file = out.join("scene.toml");
         std::fs::write(&scene_file, scene_text)?;
         let scene = mpm_core::scene::load(&scene_file)?;
+        let end_s = scene.end;
         let start = std::time::Instant::now();
         let summary = super::simulate::run_with_progress(scene, out)?;
         for m in &summary.melting {
             eprintln!("warning: {m}");
         }
-        Ok(CutRun {
+        let run = CutRun {
             summary,
             wall_s: start.elapsed().as_secs_f64(),
-        })
+        };
+        run.record(end_s).write(out)?;
+        Ok(run)
+    }
+
+    /// The run's record (`run.toml`), `end_s` being the scene's end.
+    fn record(&self, end_s: f64) -> RunRecord {
+        let s = &self.summary;
+        RunRecord {
+            points: s.particles,
+            steps: s.steps,
+            dt_s: s.time_step.dt,
+            wall_s: self.wall_s,
+            threads: rayon::current_num_threads(),
+            time_reached_s: s.failure.as_ref().map_or(end_s, |f| f.time),
+            end_s,
+            failure: s.failure.as_ref().map(|f| f.to_string()),
+        }
     }
 
     /// Particle-steps per second.

@@ -1,13 +1,13 @@
 //! `mpw cut orthogonal`: forces, shear angle, Merchant's estimate, chip.
 
-use super::pictures::{field_picture, force_range, mean, snapshots, with_peak};
+use super::pictures::{field_picture, force_range, with_peak};
 use super::{orthogonal_scene_text, same_scene, Common, CutRun};
 use crate::charts::{LineChart, Series};
 use anyhow::{Context, Result};
-use cutting::merchant::Merchant;
 use cutting::orthogonal::{OrthogonalCut, Resolution};
+use cutting::orthogonal_result::{AngleSample, OrthogonalResult, STEADY_FROM};
 use cutting::record::ToolForce;
-use fitting::experiment::processing::SavitzkyGolay;
+use materials::plasticity::ElastoPlastic;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
@@ -37,15 +37,6 @@ pub struct OrthogonalArgs {
     #[command(flatten)]
     pub common: Common,
 }
-
-/// Filter of the cutting forces (thesis §12.3): 31 samples, first order.
-pub(super) const FORCE_FILTER: SavitzkyGolay = SavitzkyGolay {
-    window: 31,
-    order: 1,
-};
-
-/// Forces count as steady from this time on (the thesis: after 15-20 µs) [s].
-pub(super) const STEADY_FROM: f64 = 20e-6;
 
 pub fn orthogonal(args: OrthogonalArgs) -> Result<()> {
     let cut = OrthogonalCut {
@@ -86,12 +77,10 @@ pub fn orthogonal(args: OrthogonalArgs) -> Result<()> {
         }
         true => same_scene(&out, &text)?,
     }
-    let force = ToolForce::read(&out.join("history.csv"), "tool")?;
-    let (fx, fy) = (
-        FORCE_FILTER.apply(&force.force_x),
-        FORCE_FILTER.apply(&force.force_y),
-    );
-    write_orthogonal_forces(&out.join("force.csv"), &force, &fx, &fy)?;
+    let result = OrthogonalResult::read(&out, &cut)?;
+    let force = &result.force;
+    let (fx, fy) = (&result.filtered_x, &result.filtered_y);
+    write_orthogonal_forces(&out.join("force.csv"), force, fx, fy)?;
     let us: Vec<f64> = force.time_s.iter().map(|t| t * 1e6).collect();
     let ((lo, hi), off) = force_range(&[&force.force_x, &force.force_y]);
     LineChart::new(
@@ -102,42 +91,12 @@ pub fn orthogonal(args: OrthogonalArgs) -> Result<()> {
     .y_range(lo * 1e-6, hi * 1e-6)
     .with(Series::scaled("f_x raw", &us, &force.force_x, 1.0, 1e-6))
     .with(Series::scaled("f_y raw", &us, &force.force_y, 1.0, 1e-6))
-    .with(Series::scaled("f_x filtered", &us, &fx, 1.0, 1e-6))
-    .with(Series::scaled("f_y filtered", &us, &fy, 1.0, 1e-6))
+    .with(Series::scaled("f_x filtered", &us, fx, 1.0, 1e-6))
+    .with(Series::scaled("f_y filtered", &us, fy, 1.0, 1e-6))
     .write_png(&out.join("force.png"))?;
-    let steady: Vec<f64> = (0..force.time_s.len())
-        .filter(|&k| force.time_s[k] >= STEADY_FROM)
-        .map(|k| fx[k])
-        .collect();
-    let angles = shear_angles(&out, &cut)?;
+    print_angles(&result.angles);
     let material = materials::load_elasto_plastic(&args.material)?;
-    if let (Some(mean_fx), Some(phi)) = (mean(&steady), mean(&angles)) {
-        let estimate = Merchant {
-            depth: cut.feed,
-            speed: cut.speed,
-            rake_deg: cut.rake_deg,
-            shear_deg: phi,
-            friction: cut.friction,
-        }
-        .estimate(&material);
-        let spread = (angles.iter().map(|a| (a - phi).powi(2)).sum::<f64>()
-            / (angles.len().max(2) - 1) as f64)
-            .sqrt();
-        println!(
-            "shear angle from the chip flow: {phi:.1}° ± {spread:.1}° (mean ± sample std over {} snapshots)",
-            angles.len()
-        );
-        println!(
-            "steady f_x (filtered, t >= {:.0} µs): {:.3} MN/m; Merchant with φ_s = {phi:.1}°: {:.3} MN/m (shear zone ε = {:.2}, ε̇ = {:.2e} 1/s, θ = {:.0} K, τ_s = {:.0} MPa)",
-            STEADY_FROM * 1e6,
-            mean_fx * 1e-6,
-            estimate.force * 1e-6,
-            estimate.strain,
-            estimate.strain_rate,
-            estimate.temperature,
-            estimate.shear_stress * 1e-6
-        );
-    }
+    print_steady(&result, &cut, &material);
     field_picture(&out, "chip.png", &format!("orthogonal cut {name}"))?;
     println!(
         "force.csv, force.png, chip.png, history and snapshots in {}",
@@ -159,33 +118,14 @@ fn write_orthogonal_forces(path: &Path, force: &ToolForce, fx: &[f64], fy: &[f64
     std::fs::write(path, text).with_context(|| format!("{}: cannot write", path.display()))
 }
 
-/// The shear angle of every snapshot from `STEADY_FROM` on [degrees] from the chip's flow
-/// (Merchant's geometry), printed with the strain-rate band's angle and its contrast.
-fn shear_angles(out: &Path, cut: &OrthogonalCut) -> Result<Vec<f64>> {
-    use cutting::shear_angle::{from_chip_flow, from_snapshot, ChipGeometry};
-    let mut angles = Vec::new();
-    for file in snapshots(out)? {
-        let snapshot = mpm_core::output::read_snapshot(&file)?;
-        if snapshot.time < STEADY_FROM {
-            continue;
-        }
-        let [x, y] = cut.tip_at(snapshot.time);
-        let geometry = ChipGeometry {
-            tip: (x, y),
-            y_surface: cut.height,
-            depth: cut.feed,
-            rake_deg: cut.rake_deg,
-            speed: cut.speed,
-        };
-        let velocity = snapshot
-            .vector("velocity")
-            .context("snapshot without velocity")?;
-        let flow = from_chip_flow(&snapshot.position, velocity, &geometry);
-        let band = from_snapshot(&snapshot, (x, y), cut.height, 0.25 * cut.feed);
-        let flow_text = flow.map_or("no chip yet".into(), |(phi, r)| {
+/// The shear angle of every snapshot from `STEADY_FROM` on, from the chip's flow and from
+/// the strain-rate band with its contrast.
+fn print_angles(angles: &[AngleSample]) {
+    for a in angles {
+        let flow = a.chip_flow.map_or("no chip yet".into(), |(phi, r)| {
             format!("{phi:.1}° (chip thickness ratio {r:.3})")
         });
-        let band_text = band.map_or("-".into(), |b| {
+        let band = a.band.map_or("-".into(), |b| {
             let clear = if b.contrast < 2.0 {
                 ", no clear band"
             } else {
@@ -194,10 +134,46 @@ fn shear_angles(out: &Path, cut: &OrthogonalCut) -> Result<Vec<f64>> {
             format!("{:.1}° (contrast {:.1}{clear})", b.degrees, b.contrast)
         });
         println!(
-            "  t = {:5.1} µs: shear angle from the chip flow {flow_text}; strain-rate band {band_text}",
-            snapshot.time * 1e6
+            "  t = {:5.1} µs: shear angle from the chip flow {flow}; strain-rate band {band}",
+            a.time * 1e6
         );
-        angles.extend(flow.map(|(phi, _)| phi));
     }
-    Ok(angles)
+}
+
+/// The steady forces, their drift and noise, the mean shear angle and Merchant's force.
+fn print_steady(result: &OrthogonalResult, cut: &OrthogonalCut, material: &ElastoPlastic<f64>) {
+    let Some([fx, fy]) = result.steady_force() else {
+        println!(
+            "the run ended before {:.0} µs: no steady force",
+            STEADY_FROM * 1e6
+        );
+        return;
+    };
+    println!(
+        "steady forces (filtered, t >= {:.0} µs): f_x {:.3} MN/m, f_y {:.3} MN/m; drift of f_x {:+.1} %; raw - filtered RMS {:.3} MN/m",
+        STEADY_FROM * 1e6,
+        fx * 1e-6,
+        fy * 1e-6,
+        100.0 * result.drift().unwrap_or(f64::NAN),
+        result.noise_rms().unwrap_or(f64::NAN) * 1e-6
+    );
+    let (Some((phi, spread)), Some(estimate)) =
+        (result.shear_angle(), result.merchant(cut, material))
+    else {
+        println!("no chip flow: no shear angle");
+        return;
+    };
+    println!(
+        "shear angle from the chip flow: {phi:.1}° ± {spread:.1}° (mean ± sample std over {} snapshots)",
+        result.angles.len()
+    );
+    println!(
+        "Merchant with φ_s = {phi:.1}°: {:.3} MN/m, f_x over it {:.2} (shear zone ε = {:.2}, ε̇ = {:.2e} 1/s, θ = {:.0} K, τ_s = {:.0} MPa)",
+        estimate.force * 1e-6,
+        fx / estimate.force,
+        estimate.strain,
+        estimate.strain_rate,
+        estimate.temperature,
+        estimate.shear_stress * 1e-6
+    );
 }

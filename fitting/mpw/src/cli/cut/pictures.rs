@@ -2,7 +2,8 @@
 //! pictures of the last snapshot.
 
 use anyhow::{Context, Result};
-use std::path::{Path, PathBuf};
+use cutting::record::snapshot_files;
+use std::path::Path;
 
 /// A y range [SI] for a force chart that shows the steady level: from the smallest value
 /// to 1.5 times the 99th percentile of the values (the first contact's impact peaks last a
@@ -35,21 +36,11 @@ pub(super) fn mean(values: &[f64]) -> Option<f64> {
     (!values.is_empty()).then(|| values.iter().sum::<f64>() / values.len() as f64)
 }
 
-/// The snapshots of a run folder in order.
-pub(super) fn snapshots(out: &Path) -> Result<Vec<PathBuf>> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(out)?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "vtp"))
-        .collect();
-    files.sort();
-    Ok(files)
-}
-
 /// The last snapshot's points coloured by equivalent plastic strain (a picture of the chip
 /// or the cut sheet) into `out/<png>`.
 pub(super) fn field_picture(out: &Path, png: &str, title: &str) -> Result<()> {
     use plotters::prelude::*;
-    let Some(last) = snapshots(out)?.pop() else {
+    let Some(last) = snapshot_files(out)?.pop() else {
         return Ok(());
     };
     let s = mpm_core::output::read_snapshot(&last)?;

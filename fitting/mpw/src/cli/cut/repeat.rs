@@ -5,13 +5,13 @@
 //! scene is in `seed_<s>/scene.toml`, its run in the batch folder (`tasks/task-<i>/run`, or
 //! under Slurm's `work_dir`).
 
-use super::orthogonal::{FORCE_FILTER, STEADY_FROM};
 use super::pictures::{force_range, mean, with_peak};
 use super::{absolute, orthogonal_scene_text, same_scene, vertical_scene_text};
 use crate::charts::{LineChart, Series};
 use crate::cli::executor_args::ExecutorArgs;
 use anyhow::{Context, Result};
 use cutting::orthogonal::{OrthogonalCut, Resolution};
+use cutting::orthogonal_result::{FORCE_FILTER, STEADY_FROM};
 use cutting::record::ToolForce;
 use cutting::vertical::{discretization, VerticalCut};
 use cutting::workpiece::RunOptions;

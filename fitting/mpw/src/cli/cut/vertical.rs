@@ -1,9 +1,10 @@
 //! `mpw cut vertical`: one set of table 12.2.
 
-use super::pictures::{field_picture, force_range, snapshots, with_peak};
+use super::pictures::{field_picture, force_range, with_peak};
 use super::{same_scene, vertical_scene_text, Common, CutRun};
 use crate::charts::{LineChart, Series};
 use anyhow::{Context, Result};
+use cutting::record::snapshot_files;
 use cutting::record::ToolForce;
 use cutting::vertical::{discretization, VerticalCut, SETS};
 use std::path::{Path, PathBuf};
@@ -104,7 +105,7 @@ pub fn vertical(args: VerticalArgs) -> Result<()> {
 /// Where the point a run failed on was, from the snapshot written at the failure, with
 /// its temperature and plastic strain: `" (at (x, y) mm, θ = …, α = …)"`, or nothing.
 fn where_it_failed(out: &Path, particle: Option<usize>) -> Result<String> {
-    let (Some(p), Some(last)) = (particle, snapshots(out)?.pop()) else {
+    let (Some(p), Some(last)) = (particle, snapshot_files(out)?.pop()) else {
         return Ok(String::new());
     };
     let s = mpm_core::output::read_snapshot(&last)?;
