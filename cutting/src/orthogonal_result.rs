@@ -11,7 +11,9 @@
 use crate::merchant::{Merchant, MerchantForce};
 use crate::orthogonal::OrthogonalCut;
 use crate::record::{snapshot_files, ToolForce};
-use crate::shear_angle::{from_chip_flow, from_snapshot, ChipGeometry, ShearAngle};
+use crate::shear_angle::{
+    from_chip_flow, from_chip_thickness, from_snapshot, ChipGeometry, ShearAngle,
+};
 use anyhow::{Context, Result};
 use fitting::experiment::processing::SavitzkyGolay;
 use materials::plasticity::ElastoPlastic;
@@ -36,6 +38,9 @@ pub struct AngleSample {
     pub time: f64,
     /// φ_s [degrees] and chip thickness ratio from the chip's flow, once there is a chip.
     pub chip_flow: Option<(f64, f64)>,
+    /// φ_s [degrees], chip thickness ratio and chip thickness [m] from the chip's
+    /// thickness.
+    pub chip_thickness: Option<(f64, f64, f64)>,
     /// The band of highest plastic strain rate through the tool tip.
     pub band: Option<ShearAngle>,
 }
@@ -113,17 +118,20 @@ impl OrthogonalResult {
     /// Mean and sample standard deviation of φ_s from the chip's flow over the snapshots
     /// from `STEADY_FROM` on [degrees]; `None` without a chip.
     pub fn shear_angle(&self) -> Option<(f64, f64)> {
-        let phi: Vec<f64> = self
-            .angles
-            .iter()
-            .filter_map(|a| a.chip_flow.map(|(phi, _)| phi))
-            .collect();
-        let m = mean(phi.iter().copied())?;
-        let spread = match phi.len() {
-            1 => 0.0,
-            n => (phi.iter().map(|p| (p - m).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt(),
-        };
-        Some((m, spread))
+        mean_and_spread(
+            self.angles
+                .iter()
+                .filter_map(|a| a.chip_flow.map(|(phi, _)| phi)),
+        )
+    }
+
+    /// The same from the chip's thickness.
+    pub fn shear_angle_from_thickness(&self) -> Option<(f64, f64)> {
+        mean_and_spread(
+            self.angles
+                .iter()
+                .filter_map(|a| a.chip_thickness.map(|(phi, _, _)| phi)),
+        )
     }
 
     /// Merchant's cutting force at the measured mean shear angle, `material` being the
@@ -159,11 +167,25 @@ fn angle_sample(snapshot: &mpm_core::output::Snapshot, cut: &OrthogonalCut) -> R
     let velocity = snapshot
         .vector("velocity")
         .context("snapshot without velocity")?;
+    // the points' initial lattice: n_x × n_y squares over the workpiece
+    let spacing = (cut.length * cut.height / snapshot.position.len() as f64).sqrt();
     Ok(AngleSample {
         time: snapshot.time,
         chip_flow: from_chip_flow(&snapshot.position, velocity, &geometry),
+        chip_thickness: from_chip_thickness(&snapshot.position, &geometry, spacing),
         band: from_snapshot(snapshot, (x, y), cut.height, 0.25 * cut.feed),
     })
+}
+
+/// Mean and sample standard deviation (0 for one value).
+fn mean_and_spread(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
+    let v: Vec<f64> = values.collect();
+    let m = mean(v.iter().copied())?;
+    let spread = match v.len() {
+        1 => 0.0,
+        n => (v.iter().map(|p| (p - m).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt(),
+    };
+    Some((m, spread))
 }
 
 fn mean(values: impl Iterator<Item = f64>) -> Option<f64> {

@@ -8,6 +8,15 @@
 //! front of the rake face, of their velocity relative to the tool along the rake face.
 //! This needs only the chip's motion, not a resolved shear zone.
 //!
+//! From the chip's thickness (`from_chip_thickness`): the same r = h/h_c with h_c the chip
+//! thickness normal to the rake face, the largest distance from the face of the chip's
+//! points at heights between h/2 and 3h/2 above the uncut surface (within 4 h of the face;
+//! the chip ends at the first gap of more than two point spacings, so that a point thrown
+//! off or the chip curling back does not count) plus half a point spacing (each point
+//! stands for a square of that side). Continuity
+//! makes the two measures one for an incompressible chip that sticks together; where the
+//! MPM chip opens gaps between its points, the thickness measure is the larger.
+//!
 //! From the plastic strain rate field (`shear_angle`, `from_snapshot`):
 //! the primary shear zone is the band in which the workpiece ahead of the tool deforms
 //! fastest, and it runs from the tool tip up to the free surface at the chip root
@@ -155,6 +164,38 @@ pub fn from_chip_flow(
     Some(((r * a.cos()).atan2(1.0 - r * a.sin()).to_degrees(), r))
 }
 
+/// φ_s [degrees], the chip thickness ratio r and the chip thickness h_c [m] from the
+/// chip's points (`positions`, a point standing for a square of side `spacing`); `None`
+/// without chip points beside the rake face.
+pub fn from_chip_thickness(
+    positions: &[[f64; 3]],
+    g: &ChipGeometry,
+    spacing: f64,
+) -> Option<(f64, f64, f64)> {
+    let a = g.rake_deg.to_radians();
+    let face_x = |y: f64| g.tip.0 + (y - g.tip.1) * a.tan();
+    let mut from_face: Vec<f64> = positions
+        .iter()
+        .filter(|p| (0.5 * g.depth..=1.5 * g.depth).contains(&(p[1] - g.y_surface)))
+        .map(|p| (face_x(p[1]) - p[0]) * a.cos())
+        .filter(|d| (0.0..=4.0 * g.depth).contains(d))
+        .collect();
+    from_face.sort_by(f64::total_cmp);
+    // the chip on the face ends at the first gap of more than two spacings
+    let farthest =
+        from_face
+            .iter()
+            .copied()
+            .reduce(|last, d| if d - last > 2.0 * spacing { last } else { d })?;
+    let thickness = farthest + 0.5 * spacing;
+    let r = g.depth / thickness;
+    Some((
+        (r * a.cos()).atan2(1.0 - r * a.sin()).to_degrees(),
+        r,
+        thickness,
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -246,5 +287,41 @@ mod tests {
         let found = shear_angle(&flat, (1e-3, 0.7e-3), 1e-3, 50e-6).unwrap();
         assert!((found.contrast - 1.0).abs() < 1e-12, "{found:?}");
         assert!(shear_angle(&[], (0.0, 0.0), 1.0, 1e-3).is_none());
+    }
+
+    /// A straight chip 0.6 mm thick on a 5° rake face above a workpiece, points every
+    /// 20 µm: the thickness comes back within a point spacing, and the angle with it;
+    /// points below the surface or behind the face, and a point thrown off beyond a gap,
+    /// do not count.
+    #[test]
+    fn the_chip_thickness_gives_merchant_s_angle() {
+        let g = ChipGeometry {
+            tip: (1e-3, 0.7e-3),
+            y_surface: 1e-3,
+            depth: 0.3e-3,
+            rake_deg: 5.0,
+            speed: 40.0,
+        };
+        let (a, t, s) = (5f64.to_radians(), 0.6e-3, 20e-6);
+        let mut positions = Vec::new();
+        for i in 0..150 {
+            for j in 0..100 {
+                let (x, y) = (i as f64 * s + 0.5 * s, j as f64 * s + 0.5 * s);
+                let from_face = (g.tip.0 + (y - g.tip.1) * a.tan() - x) * a.cos();
+                let in_chip = y > g.y_surface && (0.0..t).contains(&from_face);
+                let in_workpiece = y < g.y_surface && x < g.tip.0;
+                if in_chip || in_workpiece {
+                    positions.push([x, y, 0.0]);
+                }
+            }
+        }
+        positions.push([0.2e-3, 1.3e-3, 0.0]);
+        let (phi, r, thickness) = from_chip_thickness(&positions, &g, s).unwrap();
+        assert!((thickness - t).abs() <= s, "{thickness}");
+        let exact = (0.5 * a.cos() / (1.0 - 0.5 * a.sin())).atan().to_degrees();
+        let (lo, hi) = (g.depth / (t + s), g.depth / (t - s));
+        assert!(r >= lo && r <= hi, "{r}");
+        assert!((phi - exact).abs() < 1.0, "{phi} vs {exact}");
+        assert!(from_chip_thickness(&positions[..10], &g, s).is_none());
     }
 }

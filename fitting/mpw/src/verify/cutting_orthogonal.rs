@@ -8,8 +8,8 @@
 //! - f_x is steady from 20 µs on: the filtered force's drift (`OrthogonalResult::drift`)
 //!   is at most 10 % (asserted at the matrix cell; reported on the coarse run, whose
 //!   window is half as long);
-//! - the shear angle from the chip's flow against the thesis's ≈ 25° and the steady f_x
-//!   against Merchant's force at the measured angle (reported).
+//! - the shear angle from the chip's flow and from its thickness against the thesis's
+//!   ≈ 25°, and the steady f_x against Merchant's force at the measured angle (reported).
 //!
 //! Repeatability (fig. 12.19): the coarse run with grid-shift seeds 1, 2 and 3; the mean
 //! over the samples from 20 µs on of CV(t) = std/mean (sample std, n − 1) of the filtered
@@ -145,6 +145,15 @@ fn single_run_rows(
             setting.name,
             result.angles.len()
         )),
+        Row::info(
+            "cutting/orthogonal/shear-angle-from-thickness-deg",
+            result.shear_angle_from_thickness().map_or(f64::NAN, |(phi, _)| phi),
+            THESIS_SHEAR_ANGLE,
+        )
+        .with_note(format!(
+            "{}: from the chip's thickness normal to the rake face (h/h_c, Merchant's geometry)",
+            setting.name
+        )),
         Row::info("cutting/orthogonal/f_x-over-merchant", fx / merchant, 1.0).with_note(format!(
             "{}: Merchant's force at the measured angle with the JC flow stress of the shear zone, {:.3} MN/m",
             setting.name,
@@ -199,7 +208,7 @@ mod tests {
             full: false,
         })
         .unwrap();
-        assert_eq!(rows.len(), 6);
+        assert_eq!(rows.len(), 7);
         for r in &rows {
             assert_ne!(r.verdict, crate::verify::row::Verdict::Fail, "{r}");
             eprintln!("{r}");

@@ -116,7 +116,9 @@ impl Cut {
     fn columns(&self) -> &'static str {
         match self {
             Cut::Vertical { .. } => "relative_feed_reached",
-            Cut::Orthogonal(_) => "steady_force_x_n_per_m,shear_angle_deg",
+            Cut::Orthogonal(_) => {
+                "steady_force_x_n_per_m,shear_angle_chip_flow_deg,shear_angle_chip_thickness_deg"
+            }
         }
     }
 
@@ -140,13 +142,15 @@ impl Cut {
                 let result = OrthogonalResult::read(folder, cut)?;
                 let fx = result.steady_force().map_or(f64::NAN, |[fx, _]| fx);
                 let phi = result.shear_angle().map_or(f64::NAN, |(phi, _)| phi);
+                let thickness =
+                    (result.shear_angle_from_thickness()).map_or(f64::NAN, |(phi, _)| phi);
                 let reach = match record.failure {
                     None => "ran through".to_string(),
                     Some(_) => format!("{:.1} µs", record.time_reached_s * 1e6),
                 };
                 let text = format!("{reach}\nf_x {:.2} MN/m\n{wall}", fx * 1e-6);
                 let fraction = record.time_reached_s / record.end_s;
-                (fraction, text, format!("{fx:e},{phi:e}"))
+                (fraction, text, format!("{fx:e},{phi:e},{thickness:e}"))
             }
         })
     }

@@ -125,6 +125,9 @@ fn print_angles(angles: &[AngleSample]) {
         let flow = a.chip_flow.map_or("no chip yet".into(), |(phi, r)| {
             format!("{phi:.1}° (chip thickness ratio {r:.3})")
         });
+        let thickness = a.chip_thickness.map_or("-".into(), |(phi, _, t)| {
+            format!("{phi:.1}° (chip {:.3} mm thick)", t * 1e3)
+        });
         let band = a.band.map_or("-".into(), |b| {
             let clear = if b.contrast < 2.0 {
                 ", no clear band"
@@ -134,7 +137,7 @@ fn print_angles(angles: &[AngleSample]) {
             format!("{:.1}° (contrast {:.1}{clear})", b.degrees, b.contrast)
         });
         println!(
-            "  t = {:5.1} µs: shear angle from the chip flow {flow}; strain-rate band {band}",
+            "  t = {:5.1} µs: shear angle from the chip flow {flow}; from its thickness {thickness}; strain-rate band {band}",
             a.time * 1e6
         );
     }
@@ -167,6 +170,9 @@ fn print_steady(result: &OrthogonalResult, cut: &OrthogonalCut, material: &Elast
         "shear angle from the chip flow: {phi:.1}° ± {spread:.1}° (mean ± sample std over {} snapshots)",
         result.angles.len()
     );
+    if let Some((phi, spread)) = result.shear_angle_from_thickness() {
+        println!("shear angle from the chip thickness: {phi:.1}° ± {spread:.1}°");
+    }
     println!(
         "Merchant with φ_s = {phi:.1}°: {:.3} MN/m, f_x over it {:.2} (shear zone ε = {:.2}, ε̇ = {:.2e} 1/s, θ = {:.0} K, τ_s = {:.0} MPa)",
         estimate.force * 1e-6,
