@@ -161,7 +161,13 @@ pub fn from_chip_flow(
         return None;
     }
     let r = sum / count as f64 / g.speed;
-    Some(((r * a.cos()).atan2(1.0 - r * a.sin()).to_degrees(), r))
+    Some((merchant_angle(r, a), r))
+}
+
+/// Merchant's shear angle [degrees] from the chip thickness ratio `r` and the rake angle
+/// `rake` [rad]: tan φ_s = r cos α / (1 − r sin α).
+fn merchant_angle(r: f64, rake: f64) -> f64 {
+    (r * rake.cos()).atan2(1.0 - r * rake.sin()).to_degrees()
 }
 
 /// φ_s [degrees], the chip thickness ratio r and the chip thickness h_c [m] from the
@@ -189,11 +195,7 @@ pub fn from_chip_thickness(
             .reduce(|last, d| if d - last > 2.0 * spacing { last } else { d })?;
     let thickness = farthest + 0.5 * spacing;
     let r = g.depth / thickness;
-    Some((
-        (r * a.cos()).atan2(1.0 - r * a.sin()).to_degrees(),
-        r,
-        thickness,
-    ))
+    Some((merchant_angle(r, a), r, thickness))
 }
 
 #[cfg(test)]
@@ -244,18 +246,22 @@ mod tests {
         }
     }
 
+    /// A tip at (1 mm, 0.7 mm) under a surface at 1 mm, depth of cut 0.3 mm, rake 5°, tool
+    /// at 40 m/s.
+    const CHIP: ChipGeometry = ChipGeometry {
+        tip: (1e-3, 0.7e-3),
+        y_surface: 1e-3,
+        depth: 0.3e-3,
+        rake_deg: 5.0,
+        speed: 40.0,
+    };
+
     /// A chip that slides up a 5° rake face at r v relative to the tool (tool at 40 m/s):
     /// r and Merchant's angle come back exactly; points below the surface or behind the
     /// face do not count.
     #[test]
     fn the_chip_flow_gives_merchant_s_angle() {
-        let g = ChipGeometry {
-            tip: (1e-3, 0.7e-3),
-            y_surface: 1e-3,
-            depth: 0.3e-3,
-            rake_deg: 5.0,
-            speed: 40.0,
-        };
+        let g = CHIP;
         let a = 5f64.to_radians();
         let r = 0.5;
         let chip = [-g.speed + r * g.speed * a.sin(), r * g.speed * a.cos(), 0.0];
@@ -295,13 +301,7 @@ mod tests {
     /// do not count.
     #[test]
     fn the_chip_thickness_gives_merchant_s_angle() {
-        let g = ChipGeometry {
-            tip: (1e-3, 0.7e-3),
-            y_surface: 1e-3,
-            depth: 0.3e-3,
-            rake_deg: 5.0,
-            speed: 40.0,
-        };
+        let g = CHIP;
         let (a, t, s) = (5f64.to_radians(), 0.6e-3, 20e-6);
         let mut positions = Vec::new();
         for i in 0..150 {
