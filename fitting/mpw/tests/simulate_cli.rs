@@ -25,7 +25,7 @@ fn a_safety_factor_above_one_is_warned_about_and_named_when_the_run_fails() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success(), "{err}");
     assert!(
-        err.contains("warning: time.safety = 1.5 exceeds 1"),
+        err.contains("warning: time.safety = 1.5: dt = ") && err.contains("exceeds the CFL limit"),
         "{err}"
     );
     assert!(err.contains("simulation failed at step"), "{err}");

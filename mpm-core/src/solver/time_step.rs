@@ -47,27 +47,37 @@ pub struct TimeStep {
     pub cfl_dt: f64,
     /// The safety factor of the estimate [-].
     pub safety: f64,
+    /// The stiffest penalty or spring [N/m] and the lightest particle mass [kg], if any.
+    pub stiffest_spring: Option<(f64, f64)>,
 }
 
 impl TimeStep {
     /// Why this Δt is likely to be unstable, if it is: above the bare CFL limit
-    /// h/(c + |v|) (safety > 1, or a given Δt beyond it).
+    /// h/(c + |v|) or the bare spring limit 2 √(m/k) (safety > 1, or a given Δt beyond
+    /// either).
     pub fn risk(&self) -> Option<String> {
-        let limit = self.cfl_dt / self.safety;
-        if self.dt <= limit {
-            return None;
-        }
-        Some(match self.criterion {
-            Criterion::Given => format!(
-                "time.dt = {:.4e} s exceeds the CFL limit h/(c+|v|) = {limit:.4e} s ({:.2}x): explicit MPM is unstable there; leave dt out and set time.safety (0.2-0.5)",
-                self.dt,
+        let cfl = self.cfl_dt / self.safety;
+        let spring = self
+            .stiffest_spring
+            .map(|(k, m)| (2.0 * (m / k).sqrt(), k, m));
+        let setting = match self.criterion {
+            Criterion::Given => "leave time.dt out",
+            _ => "set time.safety to 0.2-0.5",
+        };
+        let what = match self.criterion {
+            Criterion::Given => format!("time.dt = {:.4e} s", self.dt),
+            _ => format!("time.safety = {}: dt = {:.4e} s", self.safety, self.dt),
+        };
+        if let Some((limit, k, m)) = spring.filter(|(limit, _, _)| self.dt > *limit) {
+            return Some(format!(
+                "{what} exceeds the penalty/spring limit 2√(m/k) = {limit:.4e} s ({:.2}x; k = {k:.3e} N/m on the lightest particle, {m:.3e} kg): contact and spring forces are not integrated stably there; {setting}",
                 self.dt / limit
-            ),
-            _ => format!(
-                "time.safety = {} exceeds 1: dt = {:.4e} s is above the CFL limit h/(c+|v|) = {limit:.4e} s, where explicit MPM is unstable; use 0.2-0.5",
-                self.safety, self.dt
-            ),
-        })
+            ));
+        }
+        (self.dt > cfl).then(|| format!(
+            "{what} exceeds the CFL limit h/(c+|v|) = {cfl:.4e} s ({:.2}x): explicit MPM is unstable there; {setting}",
+            self.dt / cfl
+        ))
     }
 }
 
@@ -102,6 +112,7 @@ pub fn choose(
             criterion: Criterion::Given,
             cfl_dt,
             safety,
+            stiffest_spring,
         };
     }
     let mut best = TimeStep {
@@ -112,6 +123,7 @@ pub fn choose(
         },
         cfl_dt,
         safety,
+        stiffest_spring,
     };
     if let Some((stiffness, mass)) = stiffest_spring {
         let dt = safety * 2.0 * (mass / stiffness).sqrt();
@@ -121,6 +133,7 @@ pub fn choose(
                 criterion: Criterion::Spring { stiffness, mass },
                 cfl_dt,
                 safety,
+                stiffest_spring,
             };
         }
     }
@@ -233,8 +246,14 @@ mod tests {
         // h = 0.05 m, c + |v| = 1 m/s: the bare CFL limit is 0.05 s.
         assert_eq!(choose(0.05, 1.0, None, 0.3, None).risk(), None);
         let risky = choose(0.05, 1.0, None, 1.5, None).risk().unwrap();
-        assert!(risky.starts_with("time.safety = 1.5 exceeds 1"), "{risky}");
-        assert!(risky.contains("5.0000e-2 s"), "{risky}");
+        assert!(
+            risky.starts_with("time.safety = 1.5: dt = 7.5000e-2 s exceeds the CFL limit"),
+            "{risky}"
+        );
+        assert!(
+            risky.contains("5.0000e-2 s") && risky.contains("set time.safety"),
+            "{risky}"
+        );
         assert_eq!(choose(0.05, 1.0, None, 0.3, Some(0.04)).risk(), None);
         let given = choose(0.05, 1.0, None, 0.3, Some(0.1)).risk().unwrap();
         assert!(
@@ -242,6 +261,25 @@ mod tests {
             "{given}"
         );
         assert!(given.contains("(2.00x)"), "{given}");
+    }
+
+    /// A penalty k = 100 N/m on a 1 kg particle: the bare limit 2√(m/k) = 0.2 s; the
+    /// solver's own step (safety 0.3) is within it, a given step of 0.3 s is not, though
+    /// the CFL limit (10 s) allows it.
+    #[test]
+    fn a_time_step_above_the_penalty_limit_is_named() {
+        let spring = Some((100.0, 1.0));
+        let own = choose(10.0, 1.0, spring, 0.3, None);
+        assert!(
+            (own.dt - 0.06).abs() < 1e-15 && own.risk().is_none(),
+            "{own}"
+        );
+        assert_eq!(choose(10.0, 1.0, spring, 0.3, Some(0.19)).risk(), None);
+        let given = choose(10.0, 1.0, spring, 0.3, Some(0.3)).risk().unwrap();
+        assert!(
+            given.starts_with("time.dt = 3.0000e-1 s exceeds the penalty/spring limit 2√(m/k) = 2.0000e-1 s (1.50x"),
+            "{given}"
+        );
     }
 
     /// Leapfrog on the node oscillator ü = −ω² u with ω² = c²/(h² N): amplitude after
