@@ -148,7 +148,11 @@ impl Cut {
                     None => "ran through".to_string(),
                     Some(_) => format!("{:.1} µs", record.time_reached_s * 1e6),
                 };
-                let text = format!("{reach}\nf_x {:.2} MN/m\n{wall}", fx * 1e-6);
+                let force = match fx.is_finite() {
+                    true => format!("f_x {:.2} MN/m", fx * 1e-6),
+                    false => "no steady f_x".to_string(),
+                };
+                let text = format!("{reach}\n{force}\n{wall}");
                 let fraction = record.time_reached_s / record.end_s;
                 (fraction, text, format!("{fx:e},{phi:e},{thickness:e}"))
             }
