@@ -148,6 +148,23 @@ fn a_small_stability_map_writes_its_cells() {
     let again = map(out, "in-process");
     assert!(again.contains("2 cells, 2 of them already run"), "{again}");
     assert_eq!(std::fs::read_to_string(dir.join("map.csv")).unwrap(), table);
+    // drawn from an empty folder without running: every cell not run
+    let empty = dir.join("empty");
+    let drawn = mpw_ok(&[
+        "cut",
+        "map",
+        "--spacings",
+        "1e-4",
+        "--points",
+        "60",
+        "--variants",
+        variants,
+        "--analyse-only",
+        "--out",
+        empty.to_str().unwrap(),
+    ]);
+    assert!(drawn.contains("2 cells, 0 of them already run"), "{drawn}");
+    assert_eq!(drawn.matches(": not run").count(), 2, "{drawn}");
     let bad = mpw(&[
         "cut",
         "map",

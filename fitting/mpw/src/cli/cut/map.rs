@@ -8,7 +8,8 @@
 //! Every cell keeps its run in its own folder (`<variant>_dx<spacing>_ny<points>`: scene,
 //! history, snapshots, `run.toml`); a cell whose folder already holds a finished run of the
 //! same scene is not run again, so a map can be resumed, or completed from runs made one
-//! by one with `mpw cut vertical` / `mpw cut orthogonal --out` into those folders.
+//! by one with `mpw cut vertical` / `mpw cut orthogonal --out` into those folders;
+//! `--analyse-only` draws the cells already run and runs none.
 
 use super::{absolute, orthogonal_scene_text, vertical_scene_text};
 use crate::cli::executor_args::ExecutorArgs;
@@ -47,6 +48,9 @@ pub struct MapArgs {
     /// Material file (default: the cut's material in data/materials).
     #[arg(long)]
     pub material: Option<PathBuf>,
+    /// Draw the map from the cells already run; the others show as not run.
+    #[arg(long)]
+    pub analyse_only: bool,
     /// Output folder (default out/cut_map, or out/cut_map_orthogonal).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -186,7 +190,7 @@ pub fn map(mut args: MapArgs) -> Result<()> {
                 let folder = out.join(format!("{variant}_dx{spacing}_ny{points}"));
                 let text = cut.scene(variant, spacing, points, &material)?;
                 let record = finished_run(&folder, &text);
-                if record.is_none() {
+                if record.is_none() && !args.analyse_only {
                     prepare(&folder, &text)?;
                     to_run.push(cells.len());
                 }
@@ -201,11 +205,8 @@ pub fn map(mut args: MapArgs) -> Result<()> {
             }
         }
     }
-    println!(
-        "{} cells, {} of them already run",
-        cells.len(),
-        cells.len() - to_run.len()
-    );
+    let done = cells.iter().filter(|c| c.record.is_some()).count();
+    println!("{} cells, {done} of them already run", cells.len());
     if !to_run.is_empty() {
         run_cells(&mut cells, &to_run, &args.executor, &out)?;
     }
