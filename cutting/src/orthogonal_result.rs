@@ -1,6 +1,6 @@
 //! What a run of the orthogonal cut gives (thesis §12.3), read back from its folder: the
-//! tool forces raw and filtered with the thesis's Savitzky-Golay filter (31 history
-//! samples, first order), their steady values from 20 µs on, how steady they are, the
+//! tool forces raw and filtered (by the caller's filter: the thesis's is Savitzky-Golay,
+//! 31 history samples, first order), their steady values from 20 µs on, how steady they are, the
 //! noise the filter removes, and the shear angle φ_s of every snapshot from 20 µs on (from
 //! the chip's flow, with the strain-rate band and its contrast beside it).
 //!
@@ -15,15 +15,8 @@ use crate::shear_angle::{
     from_chip_flow, from_chip_thickness, from_snapshot, ChipGeometry, ShearAngle,
 };
 use anyhow::{Context, Result};
-use fitting::experiment::processing::SavitzkyGolay;
 use materials::plasticity::ElastoPlastic;
 use std::path::Path;
-
-/// Filter of the cutting forces (thesis §12.3): 31 samples, first order.
-pub const FORCE_FILTER: SavitzkyGolay = SavitzkyGolay {
-    window: 31,
-    order: 1,
-};
 
 /// Forces count as steady from this time on (the thesis: after 15-20 µs) [s].
 pub const STEADY_FROM: f64 = 20e-6;
@@ -49,7 +42,7 @@ pub struct AngleSample {
 #[derive(Debug, Clone)]
 pub struct OrthogonalResult {
     pub force: ToolForce,
-    /// f_x and f_y through `FORCE_FILTER` [N/m].
+    /// f_x and f_y through the filter given to `read` [N/m].
     pub filtered_x: Vec<f64>,
     pub filtered_y: Vec<f64>,
     /// One per snapshot from `STEADY_FROM` on.
@@ -57,8 +50,13 @@ pub struct OrthogonalResult {
 }
 
 impl OrthogonalResult {
-    /// Read the run of `cut` in folder `run` (its `history.csv` and snapshots).
-    pub fn read(run: &Path, cut: &OrthogonalCut) -> Result<OrthogonalResult> {
+    /// Read the run of `cut` in folder `run` (its `history.csv` and snapshots), its forces
+    /// filtered by `filter`.
+    pub fn read(
+        run: &Path,
+        cut: &OrthogonalCut,
+        filter: impl Fn(&[f64]) -> Vec<f64>,
+    ) -> Result<OrthogonalResult> {
         let force = ToolForce::read(&run.join("history.csv"), TOOL)?;
         let mut angles = Vec::new();
         for file in snapshot_files(run)? {
@@ -70,8 +68,8 @@ impl OrthogonalResult {
             }
         }
         Ok(OrthogonalResult {
-            filtered_x: FORCE_FILTER.apply(&force.force_x),
-            filtered_y: FORCE_FILTER.apply(&force.force_y),
+            filtered_x: filter(&force.force_x),
+            filtered_y: filter(&force.force_y),
             force,
             angles,
         })

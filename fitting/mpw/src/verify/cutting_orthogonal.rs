@@ -15,10 +15,11 @@
 //! over the samples from 20 µs on of CV(t) = std/mean (sample std, n − 1) of the filtered
 //! f_x is below the thesis's 0.3 (asserted), that of the raw f_x reported.
 
+use crate::cut_forces::FORCE_FILTER;
 use crate::verify::row::Row;
 use crate::verify::Inputs;
 use cutting::orthogonal::{OrthogonalCut, Resolution, MATERIAL};
-use cutting::orthogonal_result::{OrthogonalResult, FORCE_FILTER, STEADY_FROM};
+use cutting::orthogonal_result::{OrthogonalResult, STEADY_FROM};
 use cutting::workpiece::RunOptions;
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
@@ -94,7 +95,7 @@ impl Setting {
         if let Some(f) = summary.failure {
             anyhow::bail!("the orthogonal cut ({}) stopped: {f}", self.name);
         }
-        let result = OrthogonalResult::read(&dir, &self.cut);
+        let result = crate::cut_forces::orthogonal_result(&dir, &self.cut);
         std::fs::remove_dir_all(&dir)?;
         result
     }

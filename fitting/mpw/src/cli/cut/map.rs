@@ -16,7 +16,6 @@ use crate::cli::executor_args::ExecutorArgs;
 use crate::cli::progress::ProgressLine;
 use anyhow::{Context, Result};
 use cutting::orthogonal::{OrthogonalCut, Resolution};
-use cutting::orthogonal_result::OrthogonalResult;
 use cutting::record::RunRecord;
 use cutting::vertical::{Discretization, VerticalCut};
 use cutting::workpiece::RunOptions;
@@ -143,7 +142,7 @@ impl Cut {
                 (feed / end_feed, text, format!("{feed:e}"))
             }
             Cut::Orthogonal(cut) => {
-                let result = OrthogonalResult::read(folder, cut)?;
+                let result = crate::cut_forces::orthogonal_result(folder, cut)?;
                 let fx = result.steady_force().map_or(f64::NAN, |[fx, _]| fx);
                 let phi = result.shear_angle().map_or(f64::NAN, |(phi, _)| phi);
                 let thickness =

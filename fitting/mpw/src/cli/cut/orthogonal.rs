@@ -77,7 +77,7 @@ pub fn orthogonal(args: OrthogonalArgs) -> Result<()> {
         }
         true => same_scene(&out, &text)?,
     }
-    let result = OrthogonalResult::read(&out, &cut)?;
+    let result = crate::cut_forces::orthogonal_result(&out, &cut)?;
     let force = &result.force;
     let (fx, fy) = (&result.filtered_x, &result.filtered_y);
     write_orthogonal_forces(&out.join("force.csv"), force, fx, fy)?;
