@@ -15,11 +15,15 @@ pub struct CellMap {
     /// Column and row names, left to right and bottom to top.
     pub columns: Vec<String>,
     pub rows: Vec<String>,
-    /// (column, row, fraction in [0, 1], text; lines split by '\n').
+    /// (column, row, fraction in [0, 1] or NaN for no value, text; lines split by '\n').
     pub cells: Vec<(usize, usize, f64, String)>,
 }
 
+/// Red (0) to green (1); grey for a cell without a value (NaN: not run).
 fn colour(t: f64) -> RGBColor {
+    if t.is_nan() {
+        return RGBColor(210, 210, 210);
+    }
     let t = t.clamp(0.0, 1.0);
     RGBColor((230.0 - 130.0 * t) as u8, (120.0 + 100.0 * t) as u8, 110)
 }

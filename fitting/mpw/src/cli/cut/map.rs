@@ -426,7 +426,7 @@ fn chart(
             .map(|(c, (fraction, text))| {
                 let column = args.spacings.iter().position(|&s| s == c.spacing).unwrap();
                 let row = args.points.iter().position(|&n| n == c.points).unwrap();
-                (column, row, fraction.max(0.0), text.clone())
+                (column, row, *fraction, text.clone())
             })
             .collect(),
     }
