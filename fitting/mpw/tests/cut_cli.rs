@@ -101,8 +101,8 @@ fn a_small_stability_map_writes_its_cells() {
     let dir = std::env::temp_dir().join(format!("mpw-cut-map-{}", std::process::id()));
     let out = dir.to_str().unwrap();
     let variants = "linear,linear+shift";
-    let map = |out: &str, executor: &str| {
-        mpw_ok(&[
+    let map_with = |out: &str, option: &[&str]| {
+        let mut args = vec![
             "cut",
             "map",
             "--spacings",
@@ -113,12 +113,13 @@ fn a_small_stability_map_writes_its_cells() {
             variants,
             "--feed",
             "0.02",
-            "--executor",
-            executor,
             "--out",
             out,
-        ])
+        ];
+        args.extend(option);
+        mpw_ok(&args)
     };
+    let map = |out: &str, executor: &str| map_with(out, &["--executor", executor]);
     map(out, "in-process");
     let table = std::fs::read_to_string(dir.join("map.csv")).unwrap();
     let rows: Vec<&str> = table.lines().skip(1).collect();
@@ -150,19 +151,7 @@ fn a_small_stability_map_writes_its_cells() {
     assert_eq!(std::fs::read_to_string(dir.join("map.csv")).unwrap(), table);
     // drawn from an empty folder without running: every cell not run
     let empty = dir.join("empty");
-    let drawn = mpw_ok(&[
-        "cut",
-        "map",
-        "--spacings",
-        "1e-4",
-        "--points",
-        "60",
-        "--variants",
-        variants,
-        "--analyse-only",
-        "--out",
-        empty.to_str().unwrap(),
-    ]);
+    let drawn = map_with(empty.to_str().unwrap(), &["--analyse-only"]);
     assert!(drawn.contains("2 cells, 0 of them already run"), "{drawn}");
     assert_eq!(drawn.matches(": not run").count(), 2, "{drawn}");
     let bad = mpw(&[
