@@ -12,7 +12,8 @@
 //!   how far it got and, for a run that stopped, why);
 //! - `orthogonal_result`: an orthogonal run read back: filtered forces, their steady
 //!   values and drift, the filter's noise, the shear angle per snapshot;
-//! - `shear_angle`: the shear angle φ_s measured from the plastic strain rate field;
+//! - `shear_angle`: the shear angle φ_s measured from the chip's flow, from its thickness
+//!   and from the plastic strain rate field;
 //! - `merchant`: Merchant's cutting force from the measured shear angle with the JC flow
 //!   stress of the shear zone, an independent check of the force level;
 //! - `repeatability`: mean, sample standard deviation and CV(t) of a force over runs that

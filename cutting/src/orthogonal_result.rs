@@ -1,8 +1,9 @@
 //! What a run of the orthogonal cut gives (thesis §12.3), read back from its folder: the
 //! tool forces raw and filtered (by the caller's filter: the thesis's is Savitzky-Golay,
-//! 31 history samples, first order), their steady values from 20 µs on, how steady they are, the
-//! noise the filter removes, and the shear angle φ_s of every snapshot from 20 µs on (from
-//! the chip's flow, with the strain-rate band and its contrast beside it).
+//! 31 history samples, first order), their steady values from 20 µs on, how steady they
+//! are, the noise the filter removes, and the shear angle φ_s of every snapshot from 20 µs
+//! on (from the chip's flow and from its thickness, with the strain-rate band and its
+//! contrast beside them).
 //!
 //! Steadiness: the filtered f_x's mean over the second half of the steady window minus its
 //! mean over the first half, over the mean of the whole window (0 for a flat force; the

@@ -1,7 +1,7 @@
 //! What a cutting run leaves: the tool's contact force per unit thickness against time (read
 //! from the run's history, columns `time_s` and `<tool>_force_<axis>_n_per_m`), and how far
-//! the run got (`RunRecord`, the run folder's `run.toml`). The force on the tool is the reaction of the workpiece: a punch pressing
-//! down feels f_y > 0.
+//! the run got (`RunRecord`, the run folder's `run.toml`). The force on the tool is the
+//! reaction of the workpiece: a punch pressing down feels f_y > 0.
 
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};

@@ -71,6 +71,14 @@ impl Cut {
         }
     }
 
+    /// The simulated time every cell runs to [s].
+    fn end(&self) -> f64 {
+        match self {
+            Cut::Vertical { cut, end_feed } => end_feed * cut.full_feed_time,
+            Cut::Orthogonal(cut) => cut.end,
+        }
+    }
+
     /// The scene text of one cell.
     fn scene(
         &self,
@@ -207,7 +215,7 @@ pub fn map(mut args: MapArgs) -> Result<()> {
     let done = cells.iter().filter(|c| c.record.is_some()).count();
     println!("{} cells, {done} of them already run", cells.len());
     if !to_run.is_empty() {
-        run_cells(&mut cells, &to_run, &args.executor, &out)?;
+        run_cells(&mut cells, &to_run, cut.end(), &args.executor, &out)?;
     }
     report(&cut, &args, &cells, &out)
 }
@@ -263,6 +271,10 @@ fn finished_run(folder: &Path, text: &str) -> Option<RunRecord> {
 /// is removed first: none of its files may be read as this run's).
 fn prepare(folder: &Path, text: &str) -> Result<()> {
     if folder.exists() {
+        println!(
+            "{}: removing an unfinished run or a run of another scene",
+            folder.display()
+        );
         std::fs::remove_dir_all(folder)
             .with_context(|| format!("{}: cannot clear", folder.display()))?;
     }
@@ -272,11 +284,12 @@ fn prepare(folder: &Path, text: &str) -> Result<()> {
         .with_context(|| format!("{}: cannot write the scene", folder.display()))
 }
 
-/// Run the cells `to_run` through the executor; each run's output is moved into its
-/// cell's folder with its record.
+/// Run the cells `to_run` (to `end_s` [s]) through the executor; each run's output is
+/// moved into its cell's folder with its record.
 fn run_cells(
     cells: &mut [Cell],
     to_run: &[usize],
+    end_s: f64,
     executor: &ExecutorArgs,
     out: &Path,
 ) -> Result<()> {
@@ -315,7 +328,7 @@ fn run_cells(
                     wall_s: manifest.wall_seconds,
                     threads: manifest.threads,
                     time_reached_s: value("run.time"),
-                    end_s: scene_end(&cell.folder)?,
+                    end_s,
                     failure: outcome.failure,
                 };
                 move_output(&batch.task(report.index).run(), &cell.folder)?;
@@ -325,11 +338,6 @@ fn run_cells(
         }
     }
     Ok(())
-}
-
-/// The end time [s] of the scene in `folder`.
-fn scene_end(folder: &Path) -> Result<f64> {
-    Ok(mpm_core::scene::load(&folder.join("scene.toml"))?.end)
 }
 
 /// Every file of the run folder `from` into `to` (the scene there stays).

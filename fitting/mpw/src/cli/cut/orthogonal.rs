@@ -168,7 +168,7 @@ fn print_steady(result: &OrthogonalResult, cut: &OrthogonalCut, material: &Elast
     };
     println!(
         "shear angle from the chip flow: {phi:.1}° ± {spread:.1}° (mean ± sample std over {} snapshots)",
-        result.angles.len()
+        result.angles.iter().filter(|a| a.chip_flow.is_some()).count()
     );
     if let Some((phi, spread)) = result.shear_angle_from_thickness() {
         println!("shear angle from the chip thickness: {phi:.1}° ± {spread:.1}°");
