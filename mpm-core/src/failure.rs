@@ -28,8 +28,8 @@ pub enum Cause {
     GridTooLarge(TooLarge),
     #[error("energy error {error:.4e} J exceeds {limit:.4e} J (the energy-error fraction of the energy supplied): the integration is gaining energy, an instability (reduce time.safety)")]
     EnergyError { error: f64, limit: f64 },
-    #[error("the point's domain reaches {extent:.3} cells from its centre (limit {limit} cells, `shape::MAX_STENCIL_NODES` stencil nodes): stretched beyond what a stencil holds; a coarser grid, or a kernel whose domain does not follow F (ugimp, linear)")]
-    DomainTooLarge { extent: f64, limit: f64 },
+    #[error("the point's domain reaches {extent:.3} cells from its centre: a GIMP box of more than {} nodes, or of more than {} along one axis, beyond what a point may reach; a coarser grid, or a vertex kernel (cpdi, cpgimp: at most 4^D nodes however far the domain stretches)", crate::shape::MAX_STENCIL_NODES, crate::shape::MAX_SUPPORT)]
+    DomainTooLarge { extent: f64 },
     #[error("interrupted (Ctrl-C or a termination signal); the output up to here is kept")]
     Interrupted,
 }

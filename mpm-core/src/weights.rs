@@ -1,31 +1,35 @@
 //! Shape-function weights cached per particle for one step (Karamelo's per-particle
 //! weight cache, NairnMPM's node lists built once per step): after the grid is refitted,
-//! every particle's stencil (first node number) and its weights N_I and gradients ∇N_I
-//! [1/m] are evaluated once, in parallel, and then read by every transfer of the step
-//! (USF and MUSL map to the grid twice and back twice; positions do not move until the
-//! step's last stage).
+//! the list of nodes every particle reaches (node numbers) with its weights N_I and
+//! gradients ∇N_I [1/m] is evaluated once, in parallel, and then read by every transfer of
+//! the step (USF and MUSL map to the grid twice and back twice; positions do not move
+//! until the step's last stage). Each particle has room for the most nodes any point of
+//! the step reaches (8 in 3D for linear, at most 64 for CPDI however far its domain
+//! stretches).
 
 use crate::grid::Grid;
 use crate::parallel;
-use crate::shape::{Hex, Kernel, Point, Reach};
+use crate::shape::{Hex, Kernel, Point, Weights};
 use nalgebra::{Matrix3, SVector};
 use rayon::prelude::*;
 use std::ops::Range;
 
-/// Weights of every particle's stencil for the current grid.
+/// Weights of the nodes every particle reaches on the current grid.
 #[derive(Debug, Clone, Default)]
 pub struct WeightCache<const D: usize> {
-    /// The stencil of every point this step.
-    reach: Reach,
-    /// Stencil nodes per particle.
-    nodes: usize,
-    /// Node-number offsets of the stencil nodes from the first one (x fastest).
-    offsets: Vec<usize>,
-    /// Node number of each particle's first stencil node.
-    first: Vec<usize>,
-    /// N_I, `nodes` per particle.
+    /// Room per particle: the most nodes any point of the step reaches.
+    room: usize,
+    /// Nodes per axis any point of the step reaches at most (`shape::Reach`).
+    support: usize,
+    /// Nodes each particle reaches.
+    len: Vec<u16>,
+    /// Each particle's lowest node number.
+    lowest: Vec<usize>,
+    /// Node numbers, `room` per particle.
+    node: Vec<u32>,
+    /// N_I, `room` per particle.
     n: Vec<f64>,
-    /// ∇N_I [1/m], `nodes` per particle.
+    /// ∇N_I [1/m], `room` per particle.
     grad: Vec<SVector<f64, D>>,
 }
 
@@ -36,110 +40,134 @@ pub type Domains<'a, const D: usize> = (
     (&'a [SVector<f64, D>], &'a [Matrix3<f64>], &'a [Hex<D>]),
 );
 
-/// One particle's stencil: node numbers are `first + offsets[k]`. A domain kernel's
-/// stencil is as wide as the step's widest domain, and most points reach only some of its
-/// nodes (a point of a 2-per-cell lattice 8 of 27): the transfers skip entries with N_I = 0
-/// and ∇N_I = 0, which made uGIMP and CPDI 12-16 % faster on `bench-mpm` case (a). (Packing
-/// the reached entries to the front, to read less, gave the same.)
+/// The nodes one particle reaches, node numbers into `Grid::nodes`, with their weights
+/// N_I and gradients ∇N_I [1/m]; each node once.
 pub struct Stencil<'a, const D: usize> {
-    pub first: usize,
-    pub offsets: &'a [usize],
+    pub node: &'a [u32],
     pub n: &'a [f64],
     pub grad: &'a [SVector<f64, D>],
 }
 
+/// One particle's room in the cache while its kernel writes to it.
+struct Slot<'a, const D: usize> {
+    /// Node number of the lower corner of the point's cell.
+    corner: usize,
+    strides: &'a [usize; D],
+    node: &'a mut [u32],
+    n: &'a mut [f64],
+    grad: &'a mut [SVector<f64, D>],
+    len: usize,
+}
+
+impl<const D: usize> Weights<D> for Slot<'_, D> {
+    #[inline]
+    fn push(&mut self, offset: [i64; D], n: f64, grad: SVector<f64, D>) {
+        let shift: i64 = (0..D).map(|k| offset[k] * self.strides[k] as i64).sum();
+        self.node[self.len] = (self.corner as i64 + shift) as u32;
+        self.n[self.len] = n;
+        self.grad[self.len] = grad;
+        self.len += 1;
+    }
+}
+
 impl<const D: usize> WeightCache<D> {
-    /// Size the cache for `count` points on stencils of `reach` on `grid` (fitted to hold
-    /// them); `fill` then evaluates each body's points with its kernel.
-    pub fn prepare(&mut self, grid: &Grid<D>, reach: Reach, count: usize) {
-        let nodes = reach.nodes(D);
-        self.nodes = nodes;
-        self.reach = reach;
-        stencil_offsets(grid, reach.support, &mut self.offsets);
-        self.first.resize(count, 0);
-        self.n.resize(count * nodes, 0.0);
-        self.grad.resize(count * nodes, SVector::zeros());
+    /// Size the cache for `count` points that reach at most `room` nodes each, at most
+    /// `support` per axis; `fill` then evaluates each body's points with its kernel.
+    pub fn prepare(&mut self, room: usize, support: usize, count: usize) {
+        self.room = room;
+        self.support = support;
+        self.len.resize(count, 0);
+        self.lowest.resize(count, 0);
+        self.node.resize(count * room, 0);
+        self.n.resize(count * room, 0.0);
+        self.grad.resize(count * room, SVector::zeros());
     }
 
     /// Evaluate kernel `K` at the points `range` of `positions`, with reference domain
     /// half-widths `half` [m], deformation gradients `f` and hexahedral domains `hex`
-    /// (empty unless some body runs `CpdiHex`), all indexed like `positions`.
+    /// (empty unless some body runs `CpdiHex`), all indexed like `positions`, on `grid`
+    /// (fitted to hold every node they reach).
     pub fn fill<K: Kernel<D>>(
         &mut self,
         grid: &Grid<D>,
         range: Range<usize>,
         (positions, (half, f, hex)): Domains<'_, D>,
     ) {
-        let (nodes, reach) = (self.nodes, self.reach);
-        let pad: usize = grid.strides.iter().map(|s| s * reach.pad).sum();
+        let room = self.room;
         let (start, end) = (range.start, range.end);
+        let slots = self.node[start * room..end * room].par_chunks_mut(room);
         let points = (positions[range.clone()].par_iter().enumerate())
-            .zip(self.first[range].par_iter_mut())
-            .zip(self.n[start * nodes..end * nodes].par_chunks_mut(nodes))
-            .zip(self.grad[start * nodes..end * nodes].par_chunks_mut(nodes));
+            .zip(
+                self.len[range.clone()]
+                    .par_iter_mut()
+                    .zip(&mut self.lowest[range]),
+            )
+            .zip(slots)
+            .zip(self.n[start * room..end * room].par_chunks_mut(room))
+            .zip(self.grad[start * room..end * room].par_chunks_mut(room));
         let cut = parallel::light(positions.len());
-        parallel::for_each(points, cut, |((((k, x), first), n), grad)| {
-            let i = start + k;
-            let (corner, xi) = grid.locate(x);
-            let point = Point {
-                xi,
-                half: &half[i],
-                f: &f[i],
-                hex: hex.get(i),
-                inv_h: &grid.inv_spacing,
-            };
-            let start = K::evaluate(&point, reach, n, grad);
-            let shift: usize = (0..D)
-                .map(|k| (start[k] + reach.pad as i64) as usize * grid.strides[k])
-                .sum();
-            *first = corner - pad + shift;
-        });
+        parallel::for_each(
+            points,
+            cut,
+            |(((((k, x), (len, lowest)), node), n), grad)| {
+                let i = start + k;
+                let (corner, xi) = grid.locate(x);
+                let point = Point {
+                    xi,
+                    half: &half[i],
+                    f: &f[i],
+                    hex: hex.get(i),
+                    inv_h: &grid.inv_spacing,
+                };
+                let mut slot = Slot {
+                    corner,
+                    strides: &grid.strides,
+                    node,
+                    n,
+                    grad,
+                    len: 0,
+                };
+                K::evaluate(&point, &mut slot);
+                *len = slot.len as u16;
+                *lowest = slot.node[..slot.len]
+                    .iter()
+                    .min()
+                    .map_or(corner, |&m| m as usize);
+            },
+        );
     }
 
-    /// The stencil of particle `i`.
+    /// The nodes particle `i` reaches.
     #[inline]
     pub fn stencil(&self, i: usize) -> Stencil<'_, D> {
-        let range = i * self.nodes..(i + 1) * self.nodes;
+        let range = i * self.room..i * self.room + self.len[i] as usize;
         Stencil {
-            first: self.first[i],
-            offsets: &self.offsets,
+            node: &self.node[range.clone()],
             n: &self.n[range.clone()],
             grad: &self.grad[range],
         }
     }
 
-    /// Nodes per axis the kernel of the last `compute` reaches.
+    /// Nodes per axis any point of the step reaches at most.
     pub fn support(&self) -> usize {
-        self.reach.support
+        self.support
     }
 
-    /// Node number of particle `i`'s first stencil node.
+    /// Particle `i`'s lowest node number.
     #[inline]
-    pub fn first(&self, i: usize) -> usize {
-        self.first[i]
+    pub fn lowest(&self, i: usize) -> usize {
+        self.lowest[i]
     }
 
-    /// Bytes kept per particle by a kernel of `nodes` stencil nodes.
+    /// Bytes kept per particle by a kernel that reaches `nodes` nodes.
     pub const fn bytes_per_particle(nodes: usize) -> usize {
         std::mem::size_of::<usize>()
-            + nodes * (std::mem::size_of::<f64>() + std::mem::size_of::<SVector<f64, D>>())
+            + std::mem::size_of::<u16>()
+            + nodes
+                * (std::mem::size_of::<u32>()
+                    + std::mem::size_of::<f64>()
+                    + std::mem::size_of::<SVector<f64, D>>())
     }
-}
-
-/// Node-number offsets of a `support`ᴰ stencil from its first node (x fastest), into
-/// `offsets` (reused from step to step).
-fn stencil_offsets<const D: usize>(grid: &Grid<D>, support: usize, offsets: &mut Vec<usize>) {
-    let count = support.pow(D as u32);
-    offsets.clear();
-    offsets.extend((0..count).map(|k| {
-        let mut rest = k;
-        let mut offset = 0;
-        for stride in grid.strides {
-            offset += (rest % support) * stride;
-            rest /= support;
-        }
-        offset
-    }));
 }
 
 #[cfg(test)]
@@ -155,16 +183,17 @@ mod tests {
         let x = vec![Vector3::new(0.6, 0.3, 2.2), Vector3::new(1.9, 0.01, 0.5)];
         let mut cache = WeightCache::default();
         let domains = ([Vector3::zeros(); 2], [nalgebra::Matrix3::identity(); 2]);
-        cache.prepare(&g, Reach::CELL, x.len());
+        cache.prepare(8, 2, x.len());
         cache.fill::<Linear>(&g, 0..x.len(), (&x, (&domains.0, &domains.1, &[])));
         let offsets = g.corner_offsets();
         for (i, x) in x.iter().enumerate() {
             let (base, xi) = g.locate(x);
             let w = linear(&xi, &g.inv_spacing);
             let s = cache.stencil(i);
-            assert_eq!(s.first, base);
+            assert_eq!(cache.lowest(i), base);
+            assert_eq!(s.node.len(), 8);
             for (k, offset) in offsets.iter().enumerate() {
-                assert_eq!(s.first + s.offsets[k], base + offset);
+                assert_eq!(s.node[k] as usize, base + offset);
                 assert_eq!(s.n[k], w.n[k]);
                 assert_eq!(s.grad[k], w.grad[k]);
             }

@@ -7,11 +7,12 @@
 //!   N^I = 2^{−D} Σ_j N^I(x^j),   ∇N^I = 2^{−D} Σ_j N^I(x^j) R^{−T} ξ^j,
 //!
 //! with N^I the linear grid functions (appendix E): a point reaches every node of the
-//! cells that hold its vertices. Σ_I N^I = 1 and Σ_I ∇N^I = 0 exactly; the weights
-//! reproduce linear fields. A point without a domain gets the linear weights.
+//! cells that hold its vertices, at most 4ᴰ however far the domain stretches (the
+//! vertices' shares are summed per node). Σ_I N^I = 1 and Σ_I ∇N^I = 0 exactly; the
+//! weights reproduce linear fields. A point without a domain gets the linear weights.
 
 use super::domain::{Deformed, Follow, Stretched};
-use super::{corners, Kernel, Linear, Point, Reach};
+use super::{box_indices, corners, Kernel, Linear, Point, Reach, Weights};
 use crate::grid::floor_i64;
 use nalgebra::SVector;
 use std::marker::PhantomData;
@@ -34,16 +35,15 @@ impl<M: Follow, const D: usize> Kernel<D> for Vertices<M> {
         SVector::from_fn(|i, _| r.row(i).abs().sum() * p.inv_h[i])
     }
 
-    fn evaluate(
-        p: &Point<'_, D>,
-        reach: Reach,
-        n: &mut [f64],
-        grad: &mut [SVector<f64, D>],
-    ) -> [i64; D] {
+    fn nodes(e: &SVector<f64, D>) -> usize {
+        vertex_nodes(e)
+    }
+
+    fn evaluate(p: &Point<'_, D>, out: &mut impl Weights<D>) {
         let r = M::edges(p.half, p.f);
         let r_inv = (p.half.min() > 0.0).then(|| r.try_inverse()).flatten();
         let Some(r_inv_t) = r_inv.map(|r_inv| r_inv.transpose()) else {
-            return vertex_weights(p, &[], reach, n, grad);
+            return vertex_weights(p, &[], out);
         };
         let share = 1.0 / corners(D) as f64;
         let vertices: [Vertex<D>; 8] = std::array::from_fn(|j| {
@@ -51,7 +51,7 @@ impl<M: Follow, const D: usize> Kernel<D> for Vertices<M> {
                 SVector::<f64, D>::from_fn(|k, _| if (j >> k) & 1 == 1 { 1.0 } else { -1.0 });
             (r * sign, share, r_inv_t * sign * share)
         });
-        vertex_weights(p, &vertices[..corners(D)], reach, n, grad)
+        vertex_weights(p, &vertices[..corners(D)], out)
     }
 }
 
@@ -71,41 +71,121 @@ pub(super) fn vertex_extent<'a, const D: usize>(
         .component_mul(inv_h)
 }
 
+/// Most nodes the vertices of a domain of half-extents `e` [cells] reach: those of the box
+/// it meets, and at most the 2ᴰ corners of each of the 2ᴰ vertices' cells.
+pub(super) fn vertex_nodes<const D: usize>(e: &SVector<f64, D>) -> usize {
+    Reach::box_nodes(e).min(corners(D) * corners(D))
+}
+
+/// Most nodes of a vertex kernel, 4ᴰ for D ≤ 3.
+const MOST: usize = 64;
+
 /// N^I = Σ_j (w_j / v) N^I(x^j) and ∇N^I = Σ_j (g_j / v) N^I(x^j) over `vertices`
-/// (module docs); no vertices: the linear weights of the point's cell.
+/// (module docs); no vertices: the linear weights of the point's cell. The shares are
+/// summed per node in the box of nodes of the vertices' cells when it has at most 4ᴰ
+/// nodes (every domain stretched less than about a cell), else in a list searched on
+/// each share.
 pub(super) fn vertex_weights<const D: usize>(
     p: &Point<'_, D>,
     vertices: &[Vertex<D>],
-    reach: Reach,
-    n: &mut [f64],
-    grad: &mut [SVector<f64, D>],
-) -> [i64; D] {
+    out: &mut impl Weights<D>,
+) {
     if vertices.is_empty() {
-        return Linear::evaluate(p, reach, n, grad);
+        return Linear::evaluate(p, out);
     }
-    let e = vertex_extent(vertices.iter().map(|v| &v.0), p.inv_h);
-    let first: [i64; D] = std::array::from_fn(|k| floor_i64(p.xi[k] - e[k]));
-    n.fill(0.0);
-    grad.fill(SVector::zeros());
-    for (offset, share, g) in vertices {
-        let vertex = p.xi + offset.component_mul(p.inv_h);
-        let cell: [i64; D] = std::array::from_fn(|k| floor_i64(vertex[k]));
-        let local = SVector::<f64, D>::from_fn(|k, _| vertex[k] - cell[k] as f64);
-        for corner in 0..corners(D) {
-            let mut node = 0;
-            let mut weight = 1.0;
-            for k in (0..D).rev() {
-                let upper = (corner >> k) & 1;
-                let index = cell[k] + upper as i64 - first[k];
-                if index < 0 || index >= reach.support as i64 {
-                    weight = 0.0; // reached by rounding only (see `Kernel::evaluate`)
-                }
-                node = node * reach.support + index.clamp(0, reach.support as i64 - 1) as usize;
-                weight *= if upper == 1 { local[k] } else { 1.0 - local[k] };
-            }
-            n[node] += share * weight;
-            grad[node] += g * weight;
+    let mut cell = [[0i64; D]; 8];
+    let mut local = [SVector::<f64, D>::zeros(); 8];
+    for (j, (offset, ..)) in vertices.iter().enumerate() {
+        let x = p.xi + offset.component_mul(p.inv_h);
+        cell[j] = std::array::from_fn(|k| floor_i64(x[k]));
+        local[j] = SVector::from_fn(|k, _| x[k] - cell[j][k] as f64);
+    }
+    let cells = &cell[..vertices.len()];
+    let lo: [i64; D] = std::array::from_fn(|k| cells.iter().map(|c| c[k]).min().unwrap_or(0));
+    let dims: [usize; D] = std::array::from_fn(|k| {
+        let hi = cells.iter().map(|c| c[k]).max().unwrap_or(0);
+        (hi - lo[k]) as usize + 2
+    });
+    let mut n = [0.0; MOST];
+    let mut grad = [SVector::<f64, D>::zeros(); MOST];
+    let at = (vertices, &cell, &local);
+    if dims.iter().product::<usize>() <= MOST {
+        // entry of node m of the box: Σ_k (m_k − lo_k) s_k with the box's strides s_k
+        let mut stride = [1; D];
+        for k in 1..D {
+            stride[k] = stride[k - 1] * dims[k - 1];
+        }
+        let corner: [usize; 8] =
+            std::array::from_fn(|c| (0..D).map(|k| ((c >> k) & 1) * stride[k]).sum());
+        let at_box = |cell: &[i64; D], c: usize| {
+            let base: usize = (0..D).map(|k| (cell[k] - lo[k]) as usize * stride[k]).sum();
+            base + corner[c]
+        };
+        spread(at, at_box, &mut n, &mut grad);
+        for (k, index) in box_indices(dims).enumerate() {
+            emit(
+                std::array::from_fn(|i| lo[i] + index[i] as i64),
+                n[k],
+                grad[k],
+                out,
+            );
+        }
+    } else {
+        let mut nodes: Vec<[i64; D]> = Vec::with_capacity(MOST);
+        let at_list = |cell: &[i64; D], c: usize| {
+            let node = std::array::from_fn(|k| cell[k] + ((c >> k) & 1) as i64);
+            nodes.iter().position(|m| *m == node).unwrap_or_else(|| {
+                nodes.push(node);
+                nodes.len() - 1
+            })
+        };
+        spread(at, at_list, &mut n, &mut grad);
+        for (k, node) in nodes.iter().enumerate() {
+            emit(*node, n[k], grad[k], out);
         }
     }
-    first
+}
+
+/// The vertices, the cells that hold them and their local coordinates in those cells.
+type Placed<'a, const D: usize> = (&'a [Vertex<D>], &'a [[i64; D]; 8], &'a [SVector<f64, D>; 8]);
+
+/// Add the share of each vertex, weight share w and gradient vector g (`Vertex`) times the
+/// linear weight of each corner c of its cell, to the entries `slot(cell, c)`.
+#[inline(always)]
+fn spread<const D: usize>(
+    (vertices, cell, local): Placed<'_, D>,
+    mut slot: impl FnMut(&[i64; D], usize) -> usize,
+    n: &mut [f64],
+    grad: &mut [SVector<f64, D>],
+) {
+    for (j, (_, share, g)) in vertices.iter().enumerate() {
+        // corner weights Π_k (1 − ξ_k or ξ_k), built axis by axis (x fastest)
+        let mut weight = [0.0; 8];
+        weight[0] = 1.0;
+        for k in 0..D {
+            let half = 1 << k;
+            for c in 0..half {
+                weight[c + half] = weight[c] * local[j][k];
+                weight[c] *= 1.0 - local[j][k];
+            }
+        }
+        for (c, &w) in weight.iter().enumerate().take(corners(D)) {
+            let k = slot(&cell[j], c);
+            n[k] += share * w;
+            grad[k] += g * w;
+        }
+    }
+}
+
+/// Node `offset` with N and ∇N to `out`, unless both are zero (not reached).
+#[inline]
+fn emit<const D: usize>(
+    offset: [i64; D],
+    n: f64,
+    grad: SVector<f64, D>,
+    out: &mut impl Weights<D>,
+) {
+    if n != 0.0 || grad != SVector::<f64, D>::zeros() {
+        out.push(offset, n, grad);
+    }
 }

@@ -17,7 +17,7 @@
 //!   vertex form of module `cpdi` instead; on the truss the two differ (`mpw verify`).
 
 use super::domain::{Fixed, Follow, Stretched};
-use super::{node_index, Kernel, Point, Reach, MAX_SUPPORT};
+use super::{box_indices, Kernel, Point, Reach, Weights, MAX_SUPPORT};
 use crate::grid::floor_i64;
 use nalgebra::SVector;
 use std::marker::PhantomData;
@@ -46,14 +46,18 @@ impl<M: Follow, const D: usize> Kernel<D> for Gimp<M> {
             .component_mul(p.inv_h)
     }
 
+    /// The box of nodes the domain meets; beyond `MAX_SUPPORT` nodes along one axis the
+    /// factors do not fit, and the count is `usize::MAX` (more than a point may reach).
+    fn nodes(e: &SVector<f64, D>) -> usize {
+        match e.iter().all(|&e| Reach::of(e).support <= MAX_SUPPORT) {
+            true => Reach::box_nodes(e),
+            false => usize::MAX,
+        }
+    }
+
     #[inline]
-    fn evaluate(
-        p: &Point<'_, D>,
-        reach: Reach,
-        n: &mut [f64],
-        grad: &mut [SVector<f64, D>],
-    ) -> [i64; D] {
-        tensor_product(p, &Self::extent(p), reach, n, grad)
+    fn evaluate(p: &Point<'_, D>, out: &mut impl Weights<D>) {
+        tensor_product(p, &Self::extent(p), out)
     }
 }
 
@@ -99,26 +103,30 @@ fn axis(xi: f64, l: f64, support: usize) -> (i64, [f64; MAX_SUPPORT], [f64; MAX_
     (first, s, ds)
 }
 
-/// N_I = Π_k S̄_k and ∂N_I/∂x_j = dS̄_j/dξ_j / h_j Π_{k≠j} S̄_k over the stencil.
+/// N_I = Π_k S̄_k and ∂N_I/∂x_j = dS̄_j/dξ_j / h_j Π_{k≠j} S̄_k over the box of nodes the
+/// domain meets (those with N_I = 0 and ∇N_I = 0 left out).
 #[inline]
 fn tensor_product<const D: usize>(
     p: &Point<'_, D>,
     l: &SVector<f64, D>,
-    reach: Reach,
-    n: &mut [f64],
-    grad: &mut [SVector<f64, D>],
-) -> [i64; D] {
-    let support = reach.support;
+    out: &mut impl Weights<D>,
+) {
+    let support: [usize; D] = std::array::from_fn(|k| Reach::of(l[k]).support);
     let axes: [(i64, [f64; MAX_SUPPORT], [f64; MAX_SUPPORT]); D] =
-        std::array::from_fn(|k| axis(p.xi[k], l[k], support));
-    for (node, (n, g)) in n.iter_mut().zip(grad.iter_mut()).enumerate() {
-        let index: [usize; D] = node_index(node, support);
+        std::array::from_fn(|k| axis(p.xi[k], l[k], support[k]));
+    for index in box_indices(support) {
         let s: [f64; D] = std::array::from_fn(|k| axes[k].1[index[k]]);
-        *n = s.iter().product();
-        for j in 0..D {
+        let n: f64 = s.iter().product();
+        let grad = SVector::<f64, D>::from_fn(|j, _| {
             let others: f64 = (0..D).filter(|&k| k != j).map(|k| s[k]).product();
-            g[j] = p.inv_h[j] * axes[j].2[index[j]] * others;
+            p.inv_h[j] * axes[j].2[index[j]] * others
+        });
+        if n != 0.0 || grad != SVector::<f64, D>::zeros() {
+            out.push(
+                std::array::from_fn(|k| axes[k].0 + index[k] as i64),
+                n,
+                grad,
+            );
         }
     }
-    std::array::from_fn(|k| axes[k].0)
 }

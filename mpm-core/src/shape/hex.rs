@@ -15,8 +15,8 @@
 //! Vertex j sits at ξ^j with ξ_k = +1 where bit k of j is set (x fastest; a mesh reader
 //! reorders its elements' counter-clockwise corners to this).
 
-use super::cpdi::{vertex_extent, vertex_weights, Vertex};
-use super::{corners, Kernel, Point, Reach};
+use super::cpdi::{vertex_extent, vertex_nodes, vertex_weights, Vertex};
+use super::{corners, Kernel, Point, Weights};
 use nalgebra::{Matrix3, SMatrix, SVector};
 
 /// A point's reference domain: vertex offsets from the point and the eq. 10.4 integrals
@@ -177,19 +177,18 @@ impl<const D: usize> Kernel<D> for CpdiHex {
         }
     }
 
-    fn evaluate(
-        p: &Point<'_, D>,
-        reach: Reach,
-        n: &mut [f64],
-        grad: &mut [SVector<f64, D>],
-    ) -> [i64; D] {
+    fn nodes(e: &SVector<f64, D>) -> usize {
+        vertex_nodes(e)
+    }
+
+    fn evaluate(p: &Point<'_, D>, out: &mut impl Weights<D>) {
         let f = in_plane::<D>(p.f);
         let (Some(hex), Some(f_inv)) = (p.hex.filter(|h| !h.is_none()), f.try_inverse()) else {
-            return vertex_weights(p, &[], reach, n, grad);
+            return vertex_weights(p, &[], out);
         };
         let f_inv_t = f_inv.transpose();
         let vertices: [Vertex<D>; 8] =
             std::array::from_fn(|j| (f * hex.offset[j], hex.weight[j], f_inv_t * hex.grad[j]));
-        vertex_weights(p, &vertices[..corners(D)], reach, n, grad)
+        vertex_weights(p, &vertices[..corners(D)], out)
     }
 }

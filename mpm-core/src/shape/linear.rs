@@ -6,7 +6,7 @@
 //! ∂N_k/∂x_j = da_{bit_j(k)} Π_{i≠j} a_{bit_i(k)}. The corner order is binary (x fastest),
 //! which differs from the right-hand order of figure E.3 only in labelling.
 
-use super::{corners, node_index, Kernel, Point, Reach};
+use super::{corners, Kernel, Point, Weights};
 use nalgebra::SVector;
 
 /// Shape function values and gradients [1/m] at one point for the 2^D corners of its cell
@@ -53,30 +53,19 @@ impl<const D: usize> Kernel<D> for Linear {
         SVector::zeros()
     }
 
+    fn nodes(_: &SVector<f64, D>) -> usize {
+        corners(D)
+    }
+
     #[inline]
-    fn evaluate(
-        p: &Point<'_, D>,
-        reach: Reach,
-        n: &mut [f64],
-        grad: &mut [SVector<f64, D>],
-    ) -> [i64; D] {
+    fn evaluate(p: &Point<'_, D>, out: &mut impl Weights<D>) {
         let w = linear(&p.xi, p.inv_h);
-        if reach == Reach::CELL {
-            n.copy_from_slice(&w.n[..corners(D)]);
-            grad.copy_from_slice(&w.grad[..corners(D)]);
-            return [0; D];
+        for k in 0..corners(D) {
+            out.push(
+                std::array::from_fn(|i| ((k >> i) & 1) as i64),
+                w.n[k],
+                w.grad[k],
+            );
         }
-        // a wider stencil (another body's domains, or a point without one): the cell's
-        // corners are its first two nodes per axis
-        n.fill(0.0);
-        grad.fill(SVector::zeros());
-        for (node, (n, g)) in n.iter_mut().zip(grad.iter_mut()).enumerate() {
-            let index: [usize; D] = node_index(node, reach.support);
-            if index.iter().all(|&i| i < 2) {
-                let corner: usize = (0..D).map(|k| index[k] << k).sum();
-                (*n, *g) = (w.n[corner], w.grad[corner]);
-            }
-        }
-        [0; D]
     }
 }

@@ -1,11 +1,13 @@
 //! Grid shape functions behind one interface, `Kernel` (thesis chapter 10 and appendix E):
 //! linear (classic MPM), uGIMP, cpGIMP (the thesis's vertex form and the analytic form of
-//! the literature) and CPDI1. Every kernel maps a point to a box of
-//! `support`ᴰ nodes (x fastest) that starts at most `pad` nodes below the lower corner of
-//! the point's cell; both follow from the largest domain half-extent e [cells] of the step
-//! (`Reach::of`), so the grid padding and the slab width of the lock-free parallel scatter
-//! grow with stretched domains without changing anything else. Weights and gradients are
-//! evaluated once per particle and step into a `WeightCache` and read by every transfer.
+//! the literature) and CPDI1. Every kernel gives a point the list of nodes it reaches
+//! (`Kernel::evaluate`), as the thesis and NairnMPM do: the 2ᴰ corners of its cell
+//! (linear), the nodes of the cells that hold its domain's vertices, at most 4ᴰ (CPDI and
+//! the thesis's cpGIMP, however far the domain stretches), or the nodes whose hats meet
+//! its box (GIMP, a tensor product). The largest domain half-extent e [cells] of the step
+//! (`Reach::of`) sizes the grid padding and the slab width of the lock-free parallel
+//! scatter. Weights and gradients are evaluated once per particle and step into a
+//! `WeightCache` and read by every transfer.
 //!
 //! The domain of a point is the box of reference half-widths a_k (`Particles::half_size`)
 //! carried along by its deformation gradient F: not at all (uGIMP), by the diagonal of F
@@ -29,12 +31,12 @@ use nalgebra::{Matrix3, SVector};
 
 pub use crate::grid::corners;
 
-/// Most stencil nodes a point may reach (`support`ᴰ): in 3D a domain half-extent of
-/// 4 cells, in 2D 14.5 cells.
+/// Most nodes a GIMP point may reach, Π_k (⌈2 l_k⌉ + 2): in 3D a box of half-width
+/// 4 cells along every axis. Vertex kernels reach at most 4ᴰ nodes.
 pub const MAX_STENCIL_NODES: usize = 1000;
 
-/// Most stencil nodes along one axis (the GIMP factors' fixed arrays; in 2D and 3D
-/// `MAX_STENCIL_NODES` is the tighter bound).
+/// Most nodes a GIMP point may reach along one axis (the factors' fixed arrays): a
+/// half-width of 15 cells.
 pub const MAX_SUPPORT: usize = 32;
 
 /// One point as a kernel sees it.
@@ -52,8 +54,9 @@ pub struct Point<'a, const D: usize> {
     pub inv_h: &'a SVector<f64, D>,
 }
 
-/// Stencil size of one step: `support` nodes per axis, starting at most `pad` nodes below
-/// the lower corner of a point's cell.
+/// How far the points of one step reach: at most `support` nodes per axis, starting at
+/// most `pad` nodes below the lower corner of a point's cell (the grid's padding and the
+/// scatter's slab width).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Reach {
     pub support: usize,
@@ -80,35 +83,31 @@ impl Reach {
         }
     }
 
-    /// Stencil nodes per point, supportᴰ.
-    pub fn nodes(&self, d: usize) -> usize {
-        self.support.pow(d as u32)
+    /// Nodes of the box a domain of half-extents `e` [cells] meets, Π_k (⌈2 e_k⌉ + 2).
+    pub fn box_nodes<const D: usize>(e: &SVector<f64, D>) -> usize {
+        e.iter().map(|&e| Reach::of(e).support).product()
     }
+}
 
-    /// Whether a `d`-dimensional stencil of this reach stays within `MAX_STENCIL_NODES`
-    /// and `MAX_SUPPORT`.
-    pub fn fits(&self, d: usize) -> bool {
-        self.nodes(d) <= MAX_STENCIL_NODES && self.support <= MAX_SUPPORT
-    }
+/// Where a kernel writes the nodes a point reaches.
+pub trait Weights<const D: usize> {
+    /// Node `offset` (per axis, in cells from the lower corner of the point's cell) with
+    /// weight N_I and gradient ∇N_I [1/m].
+    fn push(&mut self, offset: [i64; D], n: f64, grad: SVector<f64, D>);
 }
 
 /// A shape function: which nodes a point reaches and with what weights.
 pub trait Kernel<const D: usize> {
-    /// Whether the weights depend on a domain (false: the stencil is the point's cell).
+    /// Whether the weights depend on a domain (false: the nodes are the point's cell's).
     const DOMAIN: bool;
     /// Half-extent of the point's current domain along each axis [cells] (`p.xi` unused).
     fn extent(p: &Point<'_, D>) -> SVector<f64, D>;
-    /// Weights N and gradients ∇N [1/m] of a stencil of `reach.support` nodes per axis
-    /// (`n` and `grad` hold supportᴰ entries, x fastest); returns the first node of the
-    /// stencil per axis, counted from the lower corner of the point's cell (−pad … 0).
-    /// Nodes a domain would reach beyond the stencil are reached only by rounding and
-    /// carry weights at the rounding level; they are left out.
-    fn evaluate(
-        p: &Point<'_, D>,
-        reach: Reach,
-        n: &mut [f64],
-        grad: &mut [SVector<f64, D>],
-    ) -> [i64; D];
+    /// Most nodes `evaluate` gives a point of domain half-extents `e` [cells].
+    fn nodes(e: &SVector<f64, D>) -> usize;
+    /// Weights N and gradients ∇N [1/m] of the nodes the point reaches, each node once,
+    /// into `out`; nodes with N = 0 and ∇N = 0 may be left out. A node that a domain
+    /// reaches only by rounding gets weights at the rounding level.
+    fn evaluate(p: &Point<'_, D>, out: &mut impl Weights<D>);
 }
 
 /// The shape functions a model can choose.
@@ -180,14 +179,22 @@ impl std::str::FromStr for ShapeFunction {
     }
 }
 
-/// Node `node` of a stencil of `support` nodes per axis as per-axis indices (x fastest).
+/// The nodes of a box of `dims[k]` nodes along axis k as per-axis indices, x fastest
+/// (counted up digit by digit: no division per node).
 #[inline]
-fn node_index<const D: usize>(node: usize, support: usize) -> [usize; D] {
-    let mut rest = node;
-    std::array::from_fn(|_| {
-        let k = rest % support;
-        rest /= support;
-        k
+fn box_indices<const D: usize>(dims: [usize; D]) -> impl Iterator<Item = [usize; D]> {
+    let count: usize = dims.iter().product();
+    let mut next = [0usize; D];
+    (0..count).map(move |_| {
+        let index = next;
+        for k in 0..D {
+            next[k] += 1;
+            if next[k] < dims[k] {
+                break;
+            }
+            next[k] = 0;
+        }
+        index
     })
 }
 

@@ -28,11 +28,8 @@ fn interpolate<const D: usize>(
     let mut vg = SVector::<f64, D>::zeros();
     let mut a = SVector::<f64, D>::zeros();
     let mut l = SMatrix::<f64, D, D>::zeros();
-    for (c, offset) in w.offsets.iter().enumerate() {
-        if w.n[c] == 0.0 && w.grad[c] == SVector::<f64, D>::zeros() {
-            continue; // a stencil node the domain does not reach (`Stencil`)
-        }
-        let node = &grid.nodes[w.first + offset];
+    for (c, &index) in w.node.iter().enumerate() {
+        let node = &grid.nodes[index as usize];
         vg += node.velocity * w.n[c];
         a += node.acceleration * w.n[c];
         l += node.velocity * w.grad[c].transpose();

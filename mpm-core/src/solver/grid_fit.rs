@@ -1,7 +1,7 @@
 //! Fitting the grid to the points each step (module `grid`), with the grid-shift origin
 //! (eq. E.8), the node budget `limits::GRID_NODES`, and the shape-function weights of every
-//! point evaluated once for the step (module `weights`), on stencils as wide as the
-//! largest point domain of the step needs (`shape::Reach`).
+//! point evaluated once for the step (module `weights`); the largest point domain of the
+//! step sets the grid's padding (`shape::Reach`).
 
 use super::Solver;
 use crate::failure::{Cause, SimulationError};
@@ -9,6 +9,7 @@ use crate::limits::GRID_NODES;
 use crate::parallel;
 use crate::shape::{
     CpGimp, CpGimpAnalytic, Cpdi, CpdiHex, Kernel, Linear, Point, Reach, ShapeFunction, UGimp,
+    MAX_STENCIL_NODES,
 };
 use crate::weights::Domains;
 use nalgebra::SVector;
@@ -17,12 +18,11 @@ use rayon::prelude::*;
 impl<const D: usize> Solver<D> {
     /// Fit the grid to the particles' bounding box (shifted origin if grid shift is on),
     /// unless that box would need more than `limits::GRID_NODES` nodes, and evaluate
-    /// every point's shape functions for the step, each body with its own kernel on the
-    /// stencil of the widest domain of any body.
+    /// every point's shape functions for the step, each body with its own kernel.
     pub(super) fn refit_grid(&mut self) -> Result<(), SimulationError> {
-        let mut widest = (Reach::CELL, 0.0, 0);
+        let mut widest = Widest::default();
         for b in 0..self.blocks.len() {
-            let (reach, extent, point) = match self.kernel_of(b) {
+            let block = match self.kernel_of(b) {
                 ShapeFunction::Linear => self.reach::<Linear>(b),
                 ShapeFunction::UGimp => self.reach::<UGimp>(b),
                 ShapeFunction::CpGimp => self.reach::<CpGimp>(b),
@@ -30,22 +30,18 @@ impl<const D: usize> Solver<D> {
                 ShapeFunction::Cpdi => self.reach::<Cpdi>(b),
                 ShapeFunction::CpdiHex => self.reach::<CpdiHex>(b),
             };
-            if extent > widest.1 || extent.is_nan() {
-                widest = (reach, extent, point);
-            }
+            widest = widest.or(block);
         }
-        let (reach, extent, point) = widest;
-        if !reach.fits(D) || !extent.is_finite() {
-            let limit = (1..)
-                .map(|e| e as f64 * 0.5)
-                .take_while(|&e| Reach::of(e).fits(D))
-                .last()
-                .unwrap_or(0.0);
-            return Err(self.failure(Some(point), Cause::DomainTooLarge { extent, limit }));
+        if widest.nodes > MAX_STENCIL_NODES || !widest.extent.is_finite() {
+            let cause = Cause::DomainTooLarge {
+                extent: widest.extent,
+            };
+            return Err(self.failure(Some(widest.point), cause));
         }
+        let reach = Reach::of(widest.extent);
         self.fit_grid(reach)?;
         let (s, p) = (&mut self.scratch, &self.particles);
-        s.weights.prepare(&self.grid, reach, p.len());
+        s.weights.prepare(widest.nodes, reach.support, p.len());
         let (w, grid) = (&mut s.weights, &self.grid);
         for block in &self.blocks {
             let range = block.range.clone();
@@ -92,16 +88,19 @@ impl<const D: usize> Solver<D> {
         Ok(())
     }
 
-    /// The stencil block `block` needs with kernel `K` this step: from the largest domain
-    /// half-extent [cells] over its points; returns it with that extent and its point.
-    fn reach<K: Kernel<D>>(&self, block: usize) -> (Reach, f64, usize) {
+    /// How far the points of block `block` reach with kernel `K` this step.
+    fn reach<K: Kernel<D>>(&self, block: usize) -> Widest {
         let range = self.blocks[block].range.clone();
         let first = range.start;
+        let cell = Widest {
+            nodes: K::nodes(&SVector::zeros()),
+            ..Widest::default()
+        };
         if !K::DOMAIN || range.is_empty() {
-            return (Reach::CELL, 0.0, first);
+            return cell;
         }
         let (p, inv_h) = (&self.particles, &self.grid.inv_spacing);
-        let extent = |i: usize| {
+        let of = |i: usize| {
             let point = Point {
                 xi: SVector::zeros(),
                 half: &p.half_size[i],
@@ -109,20 +108,57 @@ impl<const D: usize> Solver<D> {
                 hex: p.hex.get(i),
                 inv_h,
             };
-            (K::extent(&point).max(), i)
-        };
-        // the largest extent, the first point of it
-        let wider = |a: (f64, usize), b: (f64, usize)| {
-            if b.0 > a.0 || (b.0 == a.0 && b.1 < a.1) {
-                b
-            } else {
-                a
+            let e = K::extent(&point);
+            Widest {
+                extent: e.max(),
+                point: i,
+                nodes: K::nodes(&e),
             }
         };
         let cut = parallel::light(p.len());
-        let widest = |a, i| wider(a, extent(i));
-        let (extent, widest) =
-            parallel::fold(range.into_par_iter(), cut, (0.0, first), widest, wider);
-        (Reach::of(extent), extent, widest)
+        let start = Widest {
+            point: first,
+            ..cell
+        };
+        let with = |a: Widest, i| a.or(of(i));
+        parallel::fold(range.into_par_iter(), cut, start, with, Widest::or)
+    }
+}
+
+/// How far the points reach: the largest domain half-extent [cells] (NaN if any is) and
+/// the first point of it, and the most nodes any point reaches.
+#[derive(Debug, Clone, Copy)]
+struct Widest {
+    extent: f64,
+    point: usize,
+    nodes: usize,
+}
+
+impl Default for Widest {
+    fn default() -> Self {
+        Widest {
+            extent: 0.0,
+            point: 0,
+            nodes: 1,
+        }
+    }
+}
+
+impl Widest {
+    /// The wider of `self` and `other` (on equal extents, the lower point), with the most
+    /// nodes of both.
+    fn or(self, other: Widest) -> Widest {
+        let wider = other.extent > self.extent
+            || (other.extent == self.extent && other.point < self.point)
+            || other.extent.is_nan();
+        let keep = if wider && !self.extent.is_nan() {
+            other
+        } else {
+            self
+        };
+        Widest {
+            nodes: self.nodes.max(other.nodes),
+            ..keep
+        }
     }
 }

@@ -59,9 +59,9 @@ pub struct RigidContact<const D: usize> {
 }
 
 /// Bytes of per-particle scratch the solver keeps between steps in 3D: work arrays and
-/// the shape-function weights of `stencil_nodes` nodes (8 for linear, `shape::Reach`).
-pub const fn scratch_bytes_per_particle(stencil_nodes: usize) -> usize {
-    2 * 3 * 8 + 8 + 4 + WeightCache::<3>::bytes_per_particle(stencil_nodes)
+/// the shape-function weights of `nodes` nodes reached (8 for linear).
+pub const fn scratch_bytes_per_particle(nodes: usize) -> usize {
+    2 * 3 * 8 + 8 + 4 + WeightCache::<3>::bytes_per_particle(nodes)
 }
 
 /// Per-particle work arrays of one step.

@@ -1,7 +1,7 @@
 //! Particle-to-grid transfer (algorithm 9), in parallel without locks: particles are
-//! bucketed into slabs of node rows along the last axis by their first stencil node; slabs
-//! of one colour (even or odd) touch disjoint node ranges (a slab is at least support − 1
-//! rows wide, so a stencil reaches at most into the next slab), and each slab adds its
+//! bucketed into slabs of node rows along the last axis by their lowest node; slabs of one
+//! colour (even or odd) touch disjoint node ranges (a slab is at least support − 1 rows
+//! wide, so a point reaches at most into the next slab), and each slab adds its
 //! particles in index order, so the sums do not depend on the number of threads.
 
 use super::Solver;
@@ -63,7 +63,7 @@ impl<const D: usize> Solver<D> {
             let mut rest: &mut [Node<D>] = &mut self.grid.nodes;
             let mut consumed = 0;
             for k in (colour..slabs.count).step_by(2) {
-                // node rows of slab k's stencils: k w .. (k + 1) w + support − 2
+                // node rows slab k's points reach: k w .. (k + 1) w + support − 2
                 let start = k * slabs.width * stride;
                 let end =
                     (((k + 1) * slabs.width + support - 1) * stride).min(consumed + rest.len());
@@ -110,7 +110,7 @@ impl<const D: usize> Solver<D> {
         });
     }
 
-    /// Stable counting sort of the particles by the slab of their first stencil node.
+    /// Stable counting sort of the particles by the slab of their lowest node.
     /// Same-colour slabs are a slab apart, so they touch disjoint nodes when the width is
     /// at least support − 1 node rows.
     fn bucket_by_slab(&mut self) -> Slabs {
@@ -122,7 +122,7 @@ impl<const D: usize> Solver<D> {
         let count = rows.div_ceil(width);
         let stride = self.grid.strides[last];
         let weights = &s.weights;
-        let slab_of = |i: usize| weights.first(i) / stride / width;
+        let slab_of = |i: usize| weights.lowest(i) / stride / width;
         let n = self.particles.len();
         s.slab_start.clear();
         s.slab_start.resize(count + 1, 0);
@@ -167,12 +167,9 @@ impl<const D: usize> Sources<'_, D> {
         let hoop = self
             .kinematics
             .hoop_force(&p.stress[i], vol, &p.position[i]);
-        for (c, offset) in w.offsets.iter().enumerate() {
+        for (c, &index) in w.node.iter().enumerate() {
             let n = w.n[c];
-            if n == 0.0 && w.grad[c] == SVector::<f64, D>::zeros() {
-                continue; // a stencil node the domain does not reach (`Stencil`)
-            }
-            let node = &mut nodes[w.first + offset - start];
+            let node = &mut nodes[index as usize - start];
             if t.mass {
                 node.mass += n * m;
                 node.heaviest = node.heaviest.max(m);

@@ -41,8 +41,8 @@ impl<const D: usize> Solver<D> {
         for load in loads.iter_mut() {
             let start = shares.len();
             let stencil = weights.stencil(load.particle);
-            for offset in stencil.offsets {
-                let node = stencil.first + offset;
+            for &node in stencil.node {
+                let node = node as usize;
                 let n = &grid.nodes[node];
                 let hat = hat_at(&(load.at - grid.node_position(node)), &grid.inv_spacing);
                 if hat > 0.0 && n.mass > cutoff * n.heaviest {
@@ -50,9 +50,10 @@ impl<const D: usize> Solver<D> {
                 }
             }
             if start == shares.len() {
-                // a domain stretched beyond its stencil: shared by the point's own weights
-                let own = stencil.offsets.iter().zip(stencil.n);
-                shares.extend(own.map(|(offset, &n)| (stencil.first + offset, n)));
+                // no node within a cell of x_c (a domain stretched far from its centre):
+                // shared by the point's own weights
+                let own = stencil.node.iter().zip(stencil.n);
+                shares.extend(own.map(|(&node, &n)| (node as usize, n)));
             }
             let total: f64 = shares[start..].iter().map(|(_, w)| w).sum();
             for (node, w) in &mut shares[start..] {

@@ -72,12 +72,13 @@ fn kernel_cost_target(kernel: ShapeFunction) -> f64 {
 }
 
 /// Bytes per particle with `kernel` in 3D (particles, history, step scratch with the
-/// weights of the stencil at the start, 2 points per cell, `cpdi-hex`'s reference
+/// weights of the nodes reached at the start, 2 points per cell, `cpdi-hex`'s reference
 /// domains; grid not counted).
 fn bytes_per_particle(kernel: ShapeFunction) -> usize {
-    let reach = match kernel.needs_domains() {
-        true => Reach::of(0.25),
-        false => Reach::CELL,
+    // a domain of 2 points per cell reaches the 3³ nodes of the box it meets
+    let nodes = match kernel.needs_domains() {
+        true => Reach::box_nodes(&Vector3::repeat(0.25)),
+        false => 8,
     };
     let hex = match kernel {
         ShapeFunction::CpdiHex => std::mem::size_of::<mpm_core::shape::Hex<3>>(),
@@ -85,7 +86,7 @@ fn bytes_per_particle(kernel: ShapeFunction) -> usize {
     };
     mpm_core::Particles::<3>::BYTES_PER_PARTICLE
         + std::mem::size_of::<materials::State<f64>>()
-        + mpm_core::solver::scratch_bytes_per_particle(reach.nodes(3))
+        + mpm_core::solver::scratch_bytes_per_particle(nodes)
         + hex
 }
 
