@@ -138,7 +138,8 @@ pub struct ModelSettings {
     pub drive: Drive,
     /// Axisymmetric, 3D quarter or full 3D (`geometry`).
     pub level: ModelLevel,
-    /// Shape functions of the grid (linear, or uGIMP with the points' lattice domains).
+    /// Shape functions of the grid (`ShapeFunction::SCENE_DEFAULT` unless set; domain
+    /// kernels use the points' lattice domains).
     pub shape_function: ShapeFunction,
 }
 
@@ -151,7 +152,7 @@ impl ModelSettings {
             safety: 0.3,
             drive,
             level: ModelLevel::Axisymmetric,
-            shape_function: ShapeFunction::Linear,
+            shape_function: ShapeFunction::SCENE_DEFAULT,
         }
     }
 }

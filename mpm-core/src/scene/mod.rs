@@ -10,7 +10,8 @@
 //! [grid]                           # spacing [m], origin [m], shift amplitudes [m], seed
 //! [time]                           # end [s], dt [s] (optional), safety, scheme = "musl" (default)|"usl"|"usf"
 //! [solver]                         # damping [1/s], mass_cutoff, body_force [m/s²], domain, blowup_factor,
-//!                                  # bulk_viscosity = [C1, C2] (default [0.06, 1.5]; [0, 0] for none)
+//!                                  # bulk_viscosity = [C1, C2] (default [0.06, 1.5]; [0, 0] for none),
+//!                                  # shape_function = "cpdi" (default) | "linear" | "ugimp" | "cpgimp" | ...
 //! [[materials]]                    # name, file = "../materials/x.toml", neo_hooke = {E, nu, rho},
 //!                                  # or parameters = { the contents of a parameter file }
 //! [[bodies]]                       # name, material, shape = {type = "box"|"disk"|"sphere"|"cylinder"|"polygon", ...},
@@ -657,8 +658,8 @@ mod tests {
 
     /// A body's own kernel is the scene's kernel for that body: both trusses CPDI by their
     /// own tables give the scene-wide CPDI run to the bit; with one linear and one CPDI
-    /// truss each moves as in the uniform run of its own kernel, to round-off (the wider
-    /// stencil orders the sums at a node differently), while the kernels differ by far more.
+    /// truss each moves as in the uniform run of its own kernel, while the kernels differ by
+    /// far more.
     #[test]
     fn per_body_kernels_equal_the_scene_kernel_where_they_agree() {
         let scene_wide = two_trusses(Some("cpdi"), [None, None]);
@@ -667,8 +668,8 @@ mod tests {
             scene_wide == per_body,
             "per-body CPDI differs from scene-wide CPDI"
         );
-        let linear = two_trusses(None, [None, None]);
-        let mixed = two_trusses(None, [None, Some("cpdi")]);
+        let linear = two_trusses(Some("linear"), [None, None]);
+        let mixed = two_trusses(Some("linear"), [None, Some("cpdi")]);
         let (left, right) = (0..mixed.len() / 2, mixed.len() / 2..mixed.len());
         let gap = |a: &[nalgebra::Vector2<f64>], b: &[nalgebra::Vector2<f64>]| {
             a.iter()

@@ -4,6 +4,7 @@ use super::check::Check;
 use super::spec::SceneFile;
 use super::SceneError;
 use crate::kinematics::Kinematics;
+use crate::shape::ShapeFunction;
 use crate::solver::{Scheme, Settings};
 use crate::viscosity::BulkViscosity;
 use nalgebra::SVector;
@@ -74,10 +75,11 @@ pub(super) fn settings<const D: usize>(
         settings.bulk_viscosity =
             (linear > 0.0 || quadratic > 0.0).then_some(BulkViscosity { linear, quadratic });
     }
-    if let Some(name) = &sv.shape_function {
-        settings.shape_function = name
+    settings.shape_function = match &sv.shape_function {
+        Some(name) => name
             .parse()
-            .map_err(|e: String| check.err("solver.shape_function", e))?;
-    }
+            .map_err(|e: String| check.err("solver.shape_function", e))?,
+        None => ShapeFunction::SCENE_DEFAULT,
+    };
     Ok(settings)
 }

@@ -132,6 +132,12 @@ pub enum ShapeFunction {
 }
 
 impl ShapeFunction {
+    /// The kernel of a scene, SHPB scene or fit level that names none: CPDI, the one that
+    /// converges under refinement on the Taylor bar, the truss and the SHPB specimen at
+    /// 1.2-3× linear's cost (docs/verification.md, "Default shape function"). Code that
+    /// builds `Settings` itself gets `ShapeFunction::default()`, linear.
+    pub const SCENE_DEFAULT: ShapeFunction = ShapeFunction::Cpdi;
+
     /// Every kernel, in the order of `NAMES`.
     pub const ALL: [ShapeFunction; 6] = [
         ShapeFunction::Linear,

@@ -186,6 +186,7 @@ pub fn elastic_compression(level: ModelLevel, layers: usize) -> anyhow::Result<(
         relative_velocity_m_per_s,
     };
     let mut settings = ModelSettings::new(layers, Drive::MeasuredVelocity);
+    settings.shape_function = ShapeFunction::Linear;
     settings.friction = 0.0;
     settings.level = level;
     let (e, nu) = (200e9, 0.3);

@@ -412,7 +412,7 @@ fn mpm_block_model(
         Some(name) => name
             .parse()
             .map_err(|e: String| field("shape_function", e))?,
-        None => ShapeFunction::Cpdi,
+        None => ShapeFunction::SCENE_DEFAULT,
     };
     if !(2..=400).contains(&settings.layers) {
         return Err(field(
