@@ -12,7 +12,7 @@
 //! weights reproduce linear fields. A point without a domain gets the linear weights.
 
 use super::domain::{Deformed, Follow, Stretched};
-use super::{box_indices, corners, Kernel, Linear, Point, Reach, Weights};
+use super::{corners, Kernel, Linear, Point, Reach, Weights};
 use crate::grid::floor_i64;
 use nalgebra::SVector;
 use std::marker::PhantomData;
@@ -82,9 +82,9 @@ const MOST: usize = 64;
 
 /// N^I = Σ_j (w_j / v) N^I(x^j) and ∇N^I = Σ_j (g_j / v) N^I(x^j) over `vertices`
 /// (module docs); no vertices: the linear weights of the point's cell. The shares are
-/// summed per node in the box of nodes of the vertices' cells when it has at most 4ᴰ
-/// nodes (every domain stretched less than about a cell), else in a list searched on
-/// each share.
+/// summed per node in a box of 4 nodes per axis when the vertices' cells lie within 3
+/// cells along every axis (every domain stretched less than about a cell), else in a list
+/// searched on each share.
 pub(super) fn vertex_weights<const D: usize>(
     p: &Point<'_, D>,
     vertices: &[Vertex<D>],
@@ -102,33 +102,29 @@ pub(super) fn vertex_weights<const D: usize>(
     }
     let cells = &cell[..vertices.len()];
     let lo: [i64; D] = std::array::from_fn(|k| cells.iter().map(|c| c[k]).min().unwrap_or(0));
-    let dims: [usize; D] = std::array::from_fn(|k| {
-        let hi = cells.iter().map(|c| c[k]).max().unwrap_or(0);
-        (hi - lo[k]) as usize + 2
-    });
+    let fits = (0..D).all(|k| cells.iter().all(|c| c[k] - lo[k] <= 2));
     let mut n = [0.0; MOST];
     let mut grad = [SVector::<f64, D>::zeros(); MOST];
     let at = (vertices, &cell, &local);
-    if dims.iter().product::<usize>() <= MOST {
-        // entry of node m of the box: Σ_k (m_k − lo_k) s_k with the box's strides s_k
-        let mut stride = [1; D];
-        for k in 1..D {
-            stride[k] = stride[k - 1] * dims[k - 1];
-        }
+    if fits {
+        // node m of the box of 4 nodes per axis from `lo` is entry Σ_k (m_k − lo_k) 4^k;
+        // the entries touched are marked, and given in entry order (x fastest)
         let corner: [usize; 8] =
-            std::array::from_fn(|c| (0..D).map(|k| ((c >> k) & 1) * stride[k]).sum());
+            std::array::from_fn(|c| (0..D).map(|k| ((c >> k) & 1) << (2 * k)).sum());
+        let mut touched = 0u64;
         let at_box = |cell: &[i64; D], c: usize| {
-            let base: usize = (0..D).map(|k| (cell[k] - lo[k]) as usize * stride[k]).sum();
+            let base: usize = (0..D)
+                .map(|k| ((cell[k] - lo[k]) as usize) << (2 * k))
+                .sum();
+            touched |= 1 << (base + corner[c]);
             base + corner[c]
         };
         spread(at, at_box, &mut n, &mut grad);
-        for (k, index) in box_indices(dims).enumerate() {
-            emit(
-                std::array::from_fn(|i| lo[i] + index[i] as i64),
-                n[k],
-                grad[k],
-                out,
-            );
+        while touched != 0 {
+            let k = touched.trailing_zeros() as usize;
+            touched &= touched - 1;
+            let node = std::array::from_fn(|i| lo[i] + ((k >> (2 * i)) & 3) as i64);
+            emit(node, n[k], grad[k], out);
         }
     } else {
         let mut nodes: Vec<[i64; D]> = Vec::with_capacity(MOST);
