@@ -304,7 +304,7 @@ pub fn run(args: Args) -> Result<()> {
     ];
     for kernel in &args.kernels {
         println!(
-            "memory, {}: {} bytes per particle (particles, history, step scratch with the first step's stencil; grid not counted)",
+            "memory, {}: {} bytes per particle (particles, history, step scratch with the first step's node lists; grid not counted)",
             kernel.name(),
             bytes_per_particle(*kernel)
         );
