@@ -86,8 +86,9 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// What the run will do, one line each: the scheme's stages, every velocity condition
-    /// (the axis condition of an axisymmetric scene included), rigid bodies.
+    /// What the run will do, one line each: the scheme's stages, the shape functions (the
+    /// scene's and any body's own), every velocity condition (the axis condition of an
+    /// axisymmetric scene included), rigid bodies.
     pub fn describe(&self) -> Vec<String> {
         match &self.simulation {
             Simulation::Planar(s) => describe(s),
@@ -97,7 +98,17 @@ impl Scene {
 }
 
 fn describe<const D: usize>(s: &Solver<D>) -> Vec<String> {
-    let mut lines = vec![format!("scheme {}", s.settings.scheme)];
+    let scene = s.settings.shape_function;
+    let own = s.blocks.iter().filter_map(|b| {
+        let kernel = b.kernel(scene);
+        (kernel != scene).then(|| format!(", body {}: {}", b.name, kernel.name()))
+    });
+    let kernels = format!(
+        "shape functions {}{}",
+        scene.name(),
+        own.collect::<String>()
+    );
+    let mut lines = vec![format!("scheme {}", s.settings.scheme), kernels];
     lines.extend(
         s.velocity_bcs
             .iter()
@@ -654,6 +665,37 @@ mod tests {
             s.step().unwrap();
         }
         s.particles.position
+    }
+
+    /// A scene that names no kernel runs `ShapeFunction::SCENE_DEFAULT`, and the run log
+    /// says which kernel runs, and any body's own.
+    #[test]
+    fn a_scene_without_a_kernel_runs_the_default_and_says_so() {
+        let text = std::fs::read_to_string(scenes().join("truss.toml")).unwrap();
+        let unnamed = text.replacen("shape_function = \"cpdi\"\n", "", 1);
+        assert_ne!(unnamed, text);
+        let build = |text: &str| {
+            let spec: SceneFile = toml::from_str(text).unwrap();
+            from_description(&spec, &scenes().join("x.toml")).unwrap()
+        };
+        let scene = build(&unnamed);
+        let Simulation::Planar(s) = &scene.simulation else {
+            panic!("a plane scene");
+        };
+        assert_eq!(
+            s.settings.shape_function,
+            crate::shape::ShapeFunction::SCENE_DEFAULT
+        );
+        assert_eq!(scene.describe()[1], "shape functions cpdi");
+        let own = unnamed.replacen(
+            "particles_per_cell = 3\n",
+            "particles_per_cell = 3\nshape_function = \"linear\"\n",
+            1,
+        );
+        assert_eq!(
+            build(&own).describe()[1],
+            "shape functions cpdi, body truss: linear"
+        );
     }
 
     /// A body's own kernel is the scene's kernel for that body: both trusses CPDI by their
