@@ -6,7 +6,7 @@
 //! the same arithmetic.
 
 use crate::scalar::{c, Scalar};
-use crate::tensor::{identity, M3};
+use crate::tensor::{identity, mul, M3};
 
 /// Taylor order after scaling ‖A‖₁ ≤ 1/2: truncation error ≤ 0.5¹³/13! ≈ 2e-14.
 const ORDER: usize = 12;
@@ -24,11 +24,11 @@ pub fn expm<D: Scalar>(a: &M3<D>) -> M3<D> {
     let mut term = identity::<D>();
     let mut sum = identity::<D>();
     for k in 1..=ORDER {
-        term = term * scaled * c::<D>(1.0 / k as f64);
+        term = mul(&term, &scaled) * c::<D>(1.0 / k as f64);
         sum += term;
     }
     for _ in 0..squarings {
-        sum = sum * sum;
+        sum = mul(&sum, &sum);
     }
     sum
 }

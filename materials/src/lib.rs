@@ -25,6 +25,7 @@ pub mod params;
 pub mod plasticity;
 pub mod preheated;
 pub mod scalar;
+pub mod seeded;
 pub mod signal;
 pub mod sym_eigen;
 pub mod tensor;

@@ -48,6 +48,14 @@ pub fn adjugate<T: Ring>(a: &M3<T>) -> M3<T> {
     )
 }
 
+/// The product a b, written out: for dual scalars several times faster than nalgebra's
+/// general product (which goes through its generic `gemm`), and the same numbers: each
+/// entry sums a_i0 b_0j + a_i1 b_1j + a_i2 b_2j in that order, as `gemm` does.
+#[inline]
+pub fn mul<T: Ring>(a: &M3<T>, b: &M3<T>) -> M3<T> {
+    M3::from_fn(|i, j| a[(i, 0)] * b[(0, j)] + a[(i, 1)] * b[(1, j)] + a[(i, 2)] * b[(2, j)])
+}
+
 /// Inverse by the adjugate; `None` if the determinant's real part is zero.
 pub fn inverse<D: Scalar>(a: &M3<D>) -> Option<M3<D>> {
     let d = det(a);

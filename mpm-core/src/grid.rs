@@ -7,6 +7,7 @@
 //! Nodal quantities (table 7.1): mass m [kg], momentum p [kg m/s], force f [N], and after
 //! the grid solve the velocity v_{n+1/2} [m/s] and acceleration a_n [m/s²].
 
+use materials::Scalar;
 use nalgebra::SVector;
 
 /// ⌊s⌋ as an integer, equal to `s.floor() as i64` for |s| < 2⁶³ (and 0 for NaN, as
@@ -24,16 +25,31 @@ pub const fn corners(d: usize) -> usize {
     1 << d
 }
 
-/// One grid node's temporary state.
+/// One grid node's temporary state, in any scalar (dual for the derivative pass of
+/// `solver::tangent`).
 #[derive(Debug, Clone, Copy)]
-pub struct Node<const D: usize> {
-    pub mass: f64,
+pub struct Node<const D: usize, T = f64> {
+    pub mass: T,
     /// Mass of the heaviest point that reaches the node [kg] (for the mass cutoff).
     pub heaviest: f64,
-    pub momentum: SVector<f64, D>,
-    pub force: SVector<f64, D>,
-    pub velocity: SVector<f64, D>,
-    pub acceleration: SVector<f64, D>,
+    pub momentum: SVector<T, D>,
+    pub force: SVector<T, D>,
+    pub velocity: SVector<T, D>,
+    pub acceleration: SVector<T, D>,
+}
+
+impl<const D: usize, T: Scalar> Node<D, T> {
+    /// A node with nothing mapped to it.
+    pub fn zero() -> Self {
+        Node {
+            mass: T::zero(),
+            heaviest: 0.0,
+            momentum: SVector::zeros(),
+            force: SVector::zeros(),
+            velocity: SVector::zeros(),
+            acceleration: SVector::zeros(),
+        }
+    }
 }
 
 impl<const D: usize> Node<D> {

@@ -11,6 +11,7 @@
 //!   & Schreyer 1996); a point of cross-section A at radius r is the ring 2π r A (Pappus).
 //! - `Solid` (D = 3): full 3D.
 
+use materials::scalar::{c, Scalar};
 use nalgebra::{Matrix3, SMatrix, SVector};
 use std::f64::consts::PI;
 
@@ -34,20 +35,21 @@ impl Kinematics {
     /// point at `x` (reference position `x_ref`) from its in-plane gradient `l` and grid
     /// velocity `vg`. Axisymmetric: L_θθ = v_r / r and F_θθ = (r + v_r Δt) / R.
     #[inline]
-    pub fn deformation<const D: usize>(
+    pub fn deformation<T: Scalar, const D: usize>(
         self,
-        l: &SMatrix<f64, D, D>,
-        vg: &SVector<f64, D>,
-        (x, x_ref): (&SVector<f64, D>, &SVector<f64, D>),
-        f: &Matrix3<f64>,
+        l: &SMatrix<T, D, D>,
+        vg: &SVector<T, D>,
+        (x, x_ref): (&SVector<T, D>, &SVector<f64, D>),
+        f: &Matrix3<T>,
         dt: f64,
-    ) -> (Matrix3<f64>, Matrix3<f64>) {
+    ) -> (Matrix3<T>, Matrix3<T>) {
+        let dt = c::<T>(dt);
         let mut l3 = Matrix3::zeros();
         l3.fixed_view_mut::<D, D>(0, 0).copy_from(l);
         let mut f_new = (Matrix3::identity() + l3 * dt) * f;
         if self == Kinematics::Axisymmetric {
             l3[(2, 2)] = vg[0] / x[0];
-            f_new[(2, 2)] = (x[0] + vg[0] * dt) / x_ref[0];
+            f_new[(2, 2)] = (x[0] + vg[0] * dt) / c::<T>(x_ref[0]);
         }
         (l3, f_new)
     }
@@ -55,15 +57,15 @@ impl Kinematics {
     /// The hoop force density σ_θθ V / r [N] that a point at `x` adds, times N_I, to the
     /// radial internal force of node I (zero unless axisymmetric).
     #[inline]
-    pub fn hoop_force<const D: usize>(
+    pub fn hoop_force<T: Scalar, const D: usize>(
         self,
-        sigma: &Matrix3<f64>,
-        volume: f64,
-        x: &SVector<f64, D>,
-    ) -> f64 {
+        sigma: &Matrix3<T>,
+        volume: T,
+        x: &SVector<T, D>,
+    ) -> T {
         match self {
             Kinematics::Axisymmetric => sigma[(2, 2)] * volume / x[0],
-            _ => 0.0,
+            _ => T::zero(),
         }
     }
 

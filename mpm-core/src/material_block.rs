@@ -28,6 +28,11 @@ impl MaterialBlock {
 
     /// Dilatational wave speed c = √((Λ+2G)/ρ0) (eq. 7.23) [m/s].
     pub fn wave_speed(&self) -> f64 {
-        (self.material.p_wave_modulus() / self.material.density()).sqrt()
+        wave_speed(&*self.material)
     }
+}
+
+/// Dilatational wave speed c = √((Λ+2G)/ρ0) of `material` (eq. 7.23) [m/s].
+pub fn wave_speed(material: &dyn Material) -> f64 {
+    (material.p_wave_modulus() / material.density()).sqrt()
 }

@@ -11,6 +11,8 @@
 //! drove the column next to the axis past yield in a bar that stays elastic. q vanishes with l, so the converged solution is unchanged; its work is part of
 //! the stress work, so the energy balance holds.
 
+use materials::scalar::{c as constant, Scalar};
+
 /// Coefficients C₁ (linear) and C₂ (quadratic) [-].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BulkViscosity {
@@ -27,12 +29,15 @@ impl BulkViscosity {
 
     /// Viscous pressure q [Pa] at density `rho` [kg/m³], wave speed `c` [m/s], cell size
     /// `l` [m] and volumetric strain rate `trace_d` = tr D [1/s].
+    /// In any scalar (dual in the derivative pass, `solver::tangent`).
     #[inline]
-    pub fn pressure(&self, rho: f64, c: f64, l: f64, trace_d: f64) -> f64 {
-        if trace_d >= 0.0 {
-            return 0.0;
+    pub fn pressure<T: Scalar>(&self, rho: T, c: f64, l: f64, trace_d: T) -> T {
+        if trace_d.re() >= 0.0 {
+            return T::zero();
         }
-        rho * l * (self.quadratic * l * trace_d * trace_d - self.linear * c * trace_d)
+        rho * constant::<T>(l)
+            * (constant::<T>(self.quadratic * l) * trace_d * trace_d
+                - constant::<T>(self.linear * c) * trace_d)
     }
 }
 

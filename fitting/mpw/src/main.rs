@@ -47,6 +47,9 @@ enum Command {
     RunOne(mpw::cli::run_one::Args),
     /// Measure MPM throughput (particle-steps/s with 1 and 2 threads) and bytes per particle.
     BenchMpm(mpw::cli::bench_mpm::Args),
+    /// What exact parameter derivatives through an MPM run cost: the Taylor bar plain and
+    /// with 4 and 5 Johnson-Cook derivatives, against a finite-difference Jacobian.
+    BenchDerivatives(mpw::cli::bench_derivatives::Args),
     /// What an executor costs: overhead per one-second run in process, in the local pool
     /// and through Slurm, and the pool's speed-up on a 16-run sweep.
     BenchRuns(mpw::cli::bench_runs::Args),
@@ -125,6 +128,7 @@ fn dispatch(command: Command) -> anyhow::Result<()> {
         Command::Sweep(a) => mpw::cli::sweep::run(a),
         Command::RunOne(a) => mpw::cli::run_one::run(a),
         Command::BenchMpm(a) => mpw::cli::bench_mpm::run(a),
+        Command::BenchDerivatives(a) => mpw::cli::bench_derivatives::run(a),
         Command::BenchRuns(a) => mpw::cli::bench_runs::run(a),
         Command::Kernels(a) => mpw::cli::kernels::run(a),
         Command::Completions { shell } => {

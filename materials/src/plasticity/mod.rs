@@ -26,7 +26,7 @@ use crate::lanes::MAX_LANES;
 use crate::material::{one_by_one, Deliver, Model, State};
 use crate::parameter_set;
 use crate::scalar::{c, Scalar};
-use crate::tensor::{det, lift, re, von_mises, M3};
+use crate::tensor::{det, lift, mul, re, von_mises, M3};
 use return_principal::Yielding;
 
 parameter_set! {
@@ -243,7 +243,7 @@ impl<D: Scalar> ElastoPlastic<D> {
         if j.re() <= 0.0 || !j.re().is_finite() {
             return Trial::Done(Err(MaterialError::InvertedDeformation { det_f: j.re() }));
         }
-        let fe_trial = f * old.fp_inv;
+        let fe_trial = mul(f, &old.fp_inv);
         let tau_trial = self.tau(&fe_trial, old.theta);
         // Yielding is decided in real arithmetic (φ^tr is not carried further).
         let old_re = old.re();
@@ -273,13 +273,13 @@ impl<D: Scalar> ElastoPlastic<D> {
             let fp_inv = lift(&real.fp_inv);
             let tau = match real.tau {
                 Some(tau) => lift(&tau),
-                None => self.tau(&(f * fp_inv), old.theta),
+                None => self.tau(&mul(f, &fp_inv), old.theta),
             };
             (fp_inv, c::<D>(real.alpha), tau)
         } else {
             let (fp_inv, alpha) =
                 return_reference::implicit_step(self, f, old, dt, &real.fp_inv, real.alpha)?;
-            (fp_inv, alpha, self.tau(&(f * fp_inv), old.theta))
+            (fp_inv, alpha, self.tau(&mul(f, &fp_inv), old.theta))
         };
         let dalpha = alpha - old.alpha;
         // τ_VM = τ_y at the converged return (φ = 0 holds identically in the parameters,

@@ -14,7 +14,7 @@ use crate::local_newton;
 use crate::material::State;
 use crate::plasticity::ElastoPlastic;
 use crate::scalar::{c, Scalar};
-use crate::tensor::{dev, lift, norm, M3};
+use crate::tensor::{dev, lift, mul, norm, M3};
 use nalgebra::{SMatrix, SVector};
 use num_dual::{jacobian, DualSVec64};
 
@@ -45,13 +45,13 @@ pub fn residual<E: Scalar>(
 ) -> X<E> {
     let (fp_inv, ln_dalpha) = unpack(x);
     let dalpha = ln_dalpha.exp();
-    let fe = f * fp_inv;
+    let fe = mul(f, &fp_inv);
     let tau = m.tau(&fe, old.theta);
     let s = dev(&tau);
     let s_norm = norm(&s);
     let sqrt_3_2 = c::<E>(1.5f64.sqrt());
     let flow = expm(&(s * (-dalpha * sqrt_3_2 / s_norm)));
-    let r_m = fe - flow * f * old.fp_inv;
+    let r_m = fe - mul(&mul(&flow, f), &old.fp_inv);
     let phi = (s_norm * sqrt_3_2 - m.tau_y(old.alpha + dalpha, dalpha, dt, old.theta))
         / m.elastic.shear_modulus();
     pack(&r_m, phi)

@@ -7,31 +7,37 @@
 //! which differs from the right-hand order of figure E.3 only in labelling.
 
 use super::{corners, Kernel, Point, Weights};
+use materials::scalar::{c, Scalar};
 use nalgebra::SVector;
 
 /// Shape function values and gradients [1/m] at one point for the 2^D corners of its cell
-/// (arrays sized for D ≤ 3; entries beyond 2^D are unused).
+/// (arrays sized for D ≤ 3; entries beyond 2^D are unused), in any scalar: with dual
+/// local coordinates the dual parts are dN = ∇N·dx and d∇N = (∂²N/∂x²) dx (module
+/// `solver::tangent`).
 #[derive(Debug, Clone, Copy)]
-pub struct CellWeights<const D: usize> {
-    pub n: [f64; 8],
-    pub grad: [SVector<f64, D>; 8],
+pub struct CellWeights<const D: usize, T = f64> {
+    pub n: [T; 8],
+    pub grad: [SVector<T, D>; 8],
 }
 
 /// Values and gradients for local coordinates `xi` ∈ [0, 1)^D in a cell of inverse
 /// spacing `inv_h` [1/m].
 #[inline]
-pub fn linear<const D: usize>(xi: &SVector<f64, D>, inv_h: &SVector<f64, D>) -> CellWeights<D> {
+pub fn linear<T: Scalar, const D: usize>(
+    xi: &SVector<T, D>,
+    inv_h: &SVector<f64, D>,
+) -> CellWeights<D, T> {
     let mut w = CellWeights {
-        n: [0.0; 8],
+        n: [T::zero(); 8],
         grad: [SVector::zeros(); 8],
     };
     for k in 0..corners(D) {
-        let mut n = 1.0;
-        let mut g = SVector::<f64, D>::repeat(1.0);
+        let mut n = T::one();
+        let mut g = SVector::<T, D>::repeat(T::one());
         for i in 0..D {
             let upper = (k >> i) & 1 == 1;
-            let a = if upper { xi[i] } else { 1.0 - xi[i] };
-            let da = if upper { inv_h[i] } else { -inv_h[i] };
+            let a = if upper { xi[i] } else { T::one() - xi[i] };
+            let da: T = c(if upper { inv_h[i] } else { -inv_h[i] });
             n *= a;
             for j in 0..D {
                 g[j] *= if i == j { da } else { a };

@@ -7,38 +7,43 @@
 //! new F of every point of the piece, then one `Material::update_batch` for all of them
 //! (the plastic returns four at a time in lockstep), then V, bulk viscosity and work.
 
-use super::Solver;
+use super::{Settings, Solver};
 use crate::failure::{Cause, SimulationError};
 use crate::grid::Grid;
+use crate::grid::Node;
 use crate::kinematics::Kinematics;
+use crate::material_block::wave_speed;
 use crate::parallel;
 use crate::parallel::fixed_sum;
 use crate::viscosity::BulkViscosity;
-use crate::weights::{Stencil, WeightCache};
+use crate::weights::WeightCache;
+use materials::Scalar;
 use materials::{Material, State};
 use nalgebra::{Matrix3, SMatrix, SVector};
 use rayon::prelude::*;
 
-/// Σ N v_I, Σ N a_I and L = Σ v_I ⊗ ∇N_I at one point.
+/// Σ N v_I, Σ N a_I and L = Σ v_I ⊗ ∇N_I at a point that reaches the nodes `node` with
+/// weights `n` and gradients `grad`, in any scalar (dual in the derivative pass,
+/// `tangent`).
 #[inline]
-fn interpolate<const D: usize>(
-    grid: &Grid<D>,
-    w: &Stencil<'_, D>,
-) -> (SVector<f64, D>, SVector<f64, D>, SMatrix<f64, D, D>) {
-    let mut vg = SVector::<f64, D>::zeros();
-    let mut a = SVector::<f64, D>::zeros();
-    let mut l = SMatrix::<f64, D, D>::zeros();
-    for (c, &index) in w.node.iter().enumerate() {
-        let node = &grid.nodes[index as usize];
-        vg += node.velocity * w.n[c];
-        a += node.acceleration * w.n[c];
-        l += node.velocity * w.grad[c].transpose();
+pub(super) fn interpolate<T: Scalar, const D: usize>(
+    nodes: &[Node<D, T>],
+    (node, n, grad): (&[u32], &[T], &[SVector<T, D>]),
+) -> (SVector<T, D>, SVector<T, D>, SMatrix<T, D, D>) {
+    let mut vg = SVector::<T, D>::zeros();
+    let mut a = SVector::<T, D>::zeros();
+    let mut l = SMatrix::<T, D, D>::zeros();
+    for (c, &index) in node.iter().enumerate() {
+        let node = &nodes[index as usize];
+        vg += node.velocity * n[c];
+        a += node.acceleration * n[c];
+        l += node.velocity * grad[c].transpose();
     }
     (vg, a, l)
 }
 
 /// What the deformation update of every point of one block shares.
-struct Deformation<'a> {
+pub(super) struct Deformation<'a> {
     material: &'a dyn Material,
     /// reference density ρ0 [kg/m³]
     rho0: f64,
@@ -76,7 +81,8 @@ impl<const D: usize> Piece<'_, D> {
         failure: &mut Failure,
     ) -> Option<(SVector<f64, D>, SMatrix<f64, D, D>)> {
         let i = self.first + j;
-        let (vg, a, l) = interpolate(grid, &weights.stencil(i));
+        let w = weights.stencil(i);
+        let (vg, a, l) = interpolate(&grid.nodes, (w.node, w.n, w.grad));
         if let Some(dt) = motion {
             self.v[j] += a * dt;
             self.v_grid[j] = vg;
@@ -113,7 +119,44 @@ fn earliest(failure: &mut Failure, i: usize, cause: Cause) {
     *failure = earlier(failure.take(), Some((i, Box::new(cause))));
 }
 
-impl Deformation<'_> {
+impl<'a> Deformation<'a> {
+    /// The update of points of `material` over `dt` on a grid of smallest cell size
+    /// `cell` [m].
+    pub(super) fn of<const D: usize>(
+        material: &'a dyn Material,
+        settings: &Settings<D>,
+        cell: f64,
+        dt: f64,
+    ) -> Self {
+        Deformation {
+            material,
+            rho0: material.density(),
+            dt,
+            kinematics: settings.kinematics,
+            viscosity: settings.bulk_viscosity,
+            wave_speed: wave_speed(material),
+            cell,
+        }
+    }
+
+    /// σ − q I: the material stress `sigma` with the bulk viscosity's pressure (module
+    /// `viscosity`) at rate of deformation `d` and det F `det`, in any scalar.
+    #[inline]
+    pub(super) fn with_viscosity<T: Scalar>(
+        &self,
+        sigma: Matrix3<T>,
+        d: &Matrix3<T>,
+        det: T,
+    ) -> Matrix3<T> {
+        match self.viscosity {
+            Some(q) => {
+                let rho = materials::scalar::c::<T>(self.rho0) / det;
+                sigma - Matrix3::identity() * q.pressure(rho, self.wave_speed, self.cell, d.trace())
+            }
+            None => sigma,
+        }
+    }
+
     /// F ← (I + L Δt) F (with the kinematics' out-of-plane terms), written to `f_new`, and
     /// its checks.
     fn kinematic<const D: usize>(
@@ -166,14 +209,9 @@ impl Deformation<'_> {
             let (Some(k), Some((sigma, state))) = (k, new) else {
                 continue;
             };
-            let mut sigma_new = *sigma;
             let vol_new = k.det * p.v0[j];
             let d = (k.l3 + k.l3.transpose()) * 0.5;
-            if let Some(q) = self.viscosity {
-                let rho = self.rho0 / k.det;
-                let q = q.pressure(rho, self.wave_speed, self.cell, d.trace());
-                sigma_new -= Matrix3::identity() * q;
-            }
+            let sigma_new = self.with_viscosity(*sigma, &d, k.det);
             p.work[j] = 0.5 * (p.sigma[j] * p.volume[j] + sigma_new * vol_new).dot(&d) * self.dt;
             p.f[j] = f_new[j];
             p.volume[j] = vol_new;
@@ -215,15 +253,8 @@ impl<const D: usize> Solver<D> {
             } else {
                 parallel::light(p.len()).per_item()
             };
-            let update = Deformation {
-                material: &*block.material,
-                rho0: block.material.density(),
-                dt,
-                kinematics: self.settings.kinematics,
-                viscosity: self.settings.bulk_viscosity,
-                wave_speed: block.wave_speed(),
-                cell: grid.min_spacing(),
-            };
+            let material = block.material.clone();
+            let update = Deformation::of(&*material, &self.settings, grid.min_spacing(), dt);
             // a failure travels boxed: the per-piece Option stays one word wide instead of
             // a whole `Cause` copied through the reduction
             let pieces = (

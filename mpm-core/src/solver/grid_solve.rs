@@ -7,6 +7,7 @@ use super::Solver;
 use crate::boundary::VelocityBc;
 use crate::grid::Node;
 use crate::parallel;
+use materials::scalar::{c, Scalar};
 use nalgebra::SVector;
 use rayon::prelude::*;
 
@@ -15,10 +16,10 @@ const CHUNK: usize = 2048;
 
 /// Work of one chunk of nodes [J]: damping, prescribed velocities, and the absolute
 /// value of the latter.
-type ChunkWork = (f64, f64, f64);
+pub(super) type ChunkWork = (f64, f64, f64);
 
 /// What every node of one grid solve shares.
-struct NodeSolve<'a, const D: usize> {
+pub(super) struct NodeSolve<'a, const D: usize> {
     dt: f64,
     alpha: f64,
     cutoff: f64,
@@ -27,17 +28,38 @@ struct NodeSolve<'a, const D: usize> {
     bcs: Vec<(&'a VelocityBc<D>, [Option<f64>; D])>,
 }
 
-impl<const D: usize> NodeSolve<'_, D> {
+impl<'a, const D: usize> NodeSolve<'a, D> {
+    /// The grid solve of `update` in the step from `time` over `dt` with damping α_d
+    /// `damping` [1/s] and node mass cutoff `cutoff`; velocity conditions take their values
+    /// at t_{n+1/2}.
+    pub(super) fn new(
+        bcs: &'a [VelocityBc<D>],
+        (time, dt): (f64, f64),
+        damping: f64,
+        cutoff: f64,
+        update: NodalUpdate,
+    ) -> Self {
+        let t_half = time + 0.5 * dt;
+        NodeSolve {
+            dt,
+            alpha: damping,
+            cutoff,
+            accelerate: update == NodalUpdate::Accelerate,
+            bcs: bcs.iter().map(|bc| (bc, bc.velocity_at(t_half))).collect(),
+        }
+    }
+
     /// a = (f − α_d p)/m and v = p/m + a Δt for a node above the mass cutoff (damping work
-    /// into `w.0`), else v = p/m and a = 0; returns p/m.
+    /// into `w.0`), else v = p/m and a = 0; returns p/m. Written for any scalar: the
+    /// derivative pass (`tangent`) runs it on dual nodes whose real parts are these.
     #[inline]
-    fn solve(&self, n: &mut Node<D>, w: &mut ChunkWork) -> SVector<f64, D> {
+    pub(super) fn solve<T: Scalar>(&self, n: &mut Node<D, T>, w: &mut ChunkWork) -> SVector<T, D> {
         let v_old = n.momentum / n.mass;
-        if self.accelerate && n.mass > self.cutoff * n.heaviest {
-            let damping = n.momentum * self.alpha;
+        if self.accelerate && n.mass.re() > self.cutoff * n.heaviest {
+            let damping = n.momentum * c::<T>(self.alpha);
             n.acceleration = (n.force - damping) / n.mass;
-            n.velocity = v_old + n.acceleration * self.dt;
-            w.0 -= damping.dot(&n.velocity) * self.dt;
+            n.velocity = v_old + n.acceleration * c::<T>(self.dt);
+            w.0 -= damping.dot(&n.velocity).re() * self.dt;
         } else {
             n.acceleration = SVector::zeros();
             n.velocity = v_old;
@@ -48,12 +70,12 @@ impl<const D: usize> NodeSolve<'_, D> {
     /// Velocity conditions at a node at `x` (eq. 7.28; one-sided walls take the
     /// acceleration that brings p/m to v̄), with the work of the reaction impulse.
     #[inline]
-    fn constrain(
+    pub(super) fn constrain<T: Scalar>(
         &self,
-        n: &mut Node<D>,
+        n: &mut Node<D, T>,
         x: &SVector<f64, D>,
         h: &SVector<f64, D>,
-        v_old: &SVector<f64, D>,
+        v_old: &SVector<T, D>,
         w: &mut ChunkWork,
     ) {
         for (bc, velocity) in &self.bcs {
@@ -61,22 +83,22 @@ impl<const D: usize> NodeSolve<'_, D> {
                 continue;
             }
             for (i, v) in velocity.iter().enumerate() {
-                let Some(v) = v else { continue };
-                if !bc.acts(n.velocity[i], *v) {
+                let Some(v) = *v else { continue };
+                if !bc.acts(n.velocity[i].re(), v) {
                     continue;
                 }
                 if self.accelerate {
                     // work of the reaction impulse m (v̄ − v) on v̄
-                    let dw = n.mass * (v - n.velocity[i]) * v;
+                    let dw = (n.mass * (c::<T>(v) - n.velocity[i])).re() * v;
                     w.1 += dw;
                     w.2 += dw.abs();
                 }
-                n.velocity[i] = *v;
+                n.velocity[i] = c(v);
                 n.acceleration[i] = if bc.one_sided {
                     // what takes p/m to v̄: the points feel the wall
-                    (v - v_old[i]) / self.dt
+                    (c::<T>(v) - v_old[i]) / c::<T>(self.dt)
                 } else {
-                    0.0
+                    T::zero()
                 };
             }
         }
@@ -96,18 +118,14 @@ impl<const D: usize> Solver<D> {
     /// Grid solve (algorithm 10) of `update`; velocity conditions last (eq. 7.28).
     pub(super) fn solve_grid(&mut self, update: NodalUpdate) {
         let accelerate = update == NodalUpdate::Accelerate;
-        let t_half = self.time + 0.5 * self.dt;
-        let solve = NodeSolve {
-            dt: self.dt,
-            alpha: self.settings.damping,
-            cutoff: self.mass_cutoff,
-            accelerate,
-            bcs: self
-                .velocity_bcs
-                .iter()
-                .map(|bc| (bc, bc.velocity_at(t_half)))
-                .collect(),
-        };
+        let (time, dt, damping) = (self.time, self.dt, self.settings.damping);
+        let solve = NodeSolve::new(
+            &self.velocity_bcs,
+            (time, dt),
+            damping,
+            self.mass_cutoff,
+            update,
+        );
         let meta = self.grid.clone_meta();
         let cut = parallel::light(self.particles.len()).per_item();
         let chunks = self.grid.nodes.par_chunks_mut(CHUNK).enumerate();

@@ -20,11 +20,13 @@ mod scatter;
 mod scheme;
 mod settings;
 mod surface_loads;
+mod tangent;
 pub mod time_step;
 
 pub use energies::Energies;
 pub use scheme::{Data, Scheme, Stage};
 pub use settings::Settings;
+pub use tangent::{Tangent, Unsupported};
 pub use time_step::{TimeStep, TimeStepChange};
 
 use crate::boundary::{PointCondition, VelocityBc};

@@ -10,15 +10,16 @@ use crate::kinematics::Kinematics;
 use crate::parallel;
 use crate::particles::Particles;
 use crate::weights::WeightCache;
-use nalgebra::{SMatrix, SVector};
+use materials::scalar::{c, Scalar};
+use nalgebra::{Matrix3, SMatrix, SVector};
 use rayon::prelude::*;
 
 /// Which nodal quantities a transfer maps.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Transfer {
-    mass: bool,
-    momentum: bool,
-    force: bool,
+    pub mass: bool,
+    pub momentum: bool,
+    pub force: bool,
 }
 
 impl Transfer {
@@ -160,28 +161,62 @@ impl<const D: usize> Sources<'_, D> {
         let p = self.p;
         let w = self.weights.stencil(i);
         let m = p.mass[i];
-        let mv = p.velocity[i] * m;
-        let f_ext = self.force[i] + self.body_force * m;
-        let vol = p.volume[i];
-        let sigma: SMatrix<f64, D, D> = p.stress[i].fixed_view::<D, D>(0, 0).into_owned() * vol;
-        let hoop = self
-            .kinematics
-            .hoop_force(&p.stress[i], vol, &p.position[i]);
+        let share = PointShare::new(
+            m,
+            &p.velocity[i],
+            self.force[i] + self.body_force * m,
+            (&p.stress[i], p.volume[i], &p.position[i]),
+            self.kinematics,
+        );
         for (c, &index) in w.node.iter().enumerate() {
-            let n = w.n[c];
-            let node = &mut nodes[index as usize - start];
-            if t.mass {
-                node.mass += n * m;
-                node.heaviest = node.heaviest.max(m);
-            }
-            if t.momentum {
-                node.momentum += mv * n;
-            }
-            if t.force {
-                let mut f = f_ext * n - sigma * w.grad[c];
-                f[0] -= hoop * n;
-                node.force += f;
-            }
+            share.add_to(&mut nodes[index as usize - start], t, w.n[c], &w.grad[c]);
+        }
+    }
+}
+
+/// What one point brings to the nodes it reaches (eq. 7.30-7.32): its mass m, momentum
+/// m v, external force f_ext + m b, σ V (in-plane block) and hoop force density
+/// σ_θθ V / r; in any scalar (dual in the derivative pass, `tangent`).
+pub(super) struct PointShare<const D: usize, T> {
+    mass: f64,
+    momentum: SVector<T, D>,
+    external: SVector<T, D>,
+    stress_volume: SMatrix<T, D, D>,
+    hoop: T,
+}
+
+impl<const D: usize, T: Scalar> PointShare<D, T> {
+    #[inline]
+    pub(super) fn new(
+        mass: f64,
+        velocity: &SVector<T, D>,
+        external: SVector<T, D>,
+        (stress, volume, x): (&Matrix3<T>, T, &SVector<T, D>),
+        kinematics: Kinematics,
+    ) -> Self {
+        PointShare {
+            mass,
+            momentum: velocity * c::<T>(mass),
+            external,
+            stress_volume: stress.fixed_view::<D, D>(0, 0).into_owned() * volume,
+            hoop: kinematics.hoop_force(stress, volume, x),
+        }
+    }
+
+    /// Add the share of weight `n` and gradient `grad` to `node`.
+    #[inline]
+    pub(super) fn add_to(&self, node: &mut Node<D, T>, t: Transfer, n: T, grad: &SVector<T, D>) {
+        if t.mass {
+            node.mass += n * c::<T>(self.mass);
+            node.heaviest = node.heaviest.max(self.mass);
+        }
+        if t.momentum {
+            node.momentum += self.momentum * n;
+        }
+        if t.force {
+            let mut f = self.external * n - self.stress_volume * grad;
+            f[0] -= self.hoop * n;
+            node.force += f;
         }
     }
 }

@@ -1,6 +1,7 @@
 //! One module per `mpw` subcommand: its clap `Args` and its `run`.
 
 pub mod bench;
+pub mod bench_derivatives;
 pub mod bench_mpm;
 pub mod bench_runs;
 pub mod bench_small;

@@ -237,6 +237,50 @@ fn truss_chart(scenes: &Path, out: &Path) -> Result<()> {
     chart.write_png(&out.join("truss_displacement.png"))
 }
 
+/// Taylor bar derivatives: the central differences' error against the step (the noise
+/// curve), and how each Johnson-Cook parameter moves the length and the footprint
+/// through the impact (exact derivatives, scaled by the parameter).
+fn taylor_derivative_charts(materials: &Path, out: &Path) -> Result<()> {
+    use crate::verify::mpm::taylor_derivatives::{Study, FREE, QUANTITIES, STEPS};
+    let study = Study::run(materials)?;
+    for (q, file) in [(0, "length"), (2, "footprint")] {
+        let mut noise = LineChart::new(
+            format!(
+                "Taylor bar, dx 0.635 mm, 80 µs: central differences of {} against the exact derivative",
+                QUANTITIES[q]
+            ),
+            "log10 of the relative step h/p [-]",
+            "log10 of |central − exact| · p / (largest |p ∂q/∂p|) [-]",
+        )
+        .markers();
+        let mut history = LineChart::new(
+            format!(
+                "Taylor bar, dx 0.635 mm: sensitivity of {} to each Johnson-Cook parameter (exact)",
+                QUANTITIES[q]
+            ),
+            "t [µs]",
+            "p ∂q/∂p [mm]",
+        );
+        for (k, parameter) in FREE.iter().enumerate() {
+            noise = noise.with(Series {
+                label: (*parameter).into(),
+                points: (0..STEPS.len())
+                    .map(|j| (STEPS[j].log10(), study.error(q, k, j).log10()))
+                    .collect(),
+            });
+            history = history.with(Series {
+                label: (*parameter).into(),
+                points: (study.exact.history.iter())
+                    .map(|(t, d)| (t * 1e6, d[q][k] * 1e3))
+                    .collect(),
+            });
+        }
+        noise.write_png(&out.join(format!("taylor_derivatives_{file}_central_error.png")))?;
+        history.write_png(&out.join(format!("taylor_derivatives_{file}_history.png")))?;
+    }
+    Ok(())
+}
+
 pub fn run(args: Args) -> Result<()> {
     let data = VerifyData::new(&args.data);
     let materials = data.materials();
@@ -267,6 +311,7 @@ pub fn run(args: Args) -> Result<()> {
         iso_error_charts(&materials, dir)?;
         bar_energy_chart(dir)?;
         truss_chart(&data.scenes(), dir)?;
+        taylor_derivative_charts(&materials, dir)?;
         println!("charts written to {}", dir.display());
     }
     let count = |v: Verdict| cases.iter().filter(|c| c.verdict == v).count();

@@ -11,6 +11,7 @@ pub mod impact;
 pub mod integrators;
 pub mod rigid_contact;
 pub mod taylor;
+pub mod taylor_derivatives;
 pub mod truss;
 pub mod vibration;
 
@@ -314,6 +315,7 @@ fn cases(data: &VerifyData, full: bool) -> Vec<Row> {
     }
     // Taylor bar, axisymmetric against a 3D quarter model (symmetry planes)
     taylor::cases(materials, full, &mut out);
+    taylor_derivatives::cases(materials, full, &mut out);
 
     // section 9.2: plastic impact of a steel disk into a 6061-T6 target
     impact::cases(materials, full, &mut out);

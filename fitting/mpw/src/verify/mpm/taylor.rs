@@ -25,6 +25,8 @@
 //! github.com/bbanerjee/HighRateExptData, `TaylorData/DAT/CuZerilli.dat`. SI units.
 
 use crate::verify::row::Row;
+use materials::scalar::{c, Scalar};
+use materials::Material;
 use mpm_core::discretize::{fill, Geometry};
 use mpm_core::failure::SimulationError;
 use mpm_core::kinematics::Kinematics;
@@ -33,8 +35,9 @@ use mpm_core::shape::ShapeFunction;
 use mpm_core::solver::{Scheme, Settings, Solver};
 use mpm_core::NodeSet;
 use mpm_core::VelocityBc;
-use nalgebra::SVector;
+use nalgebra::{Matrix3, SVector};
 use std::path::Path;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// Initial bar length [m].
@@ -125,30 +128,8 @@ pub fn taylor_bar(
     let s = spacing / per_cell as f64;
     match model {
         Model::Axisymmetric => {
-            let mut settings = Settings::<2>::new(Kinematics::Axisymmetric, spacing);
-            settings.scheme = Scheme::Musl;
-            settings.safety = 0.3;
-            settings.shape_function = kernel;
-            let mut solver = Solver::new(settings);
-            solver.velocity_bcs.push(VelocityBc::axis());
-            let points = fill(
-                &Geometry::Box {
-                    min: SVector::<f64, 2>::new(0.0, 0.0),
-                    max: SVector::<f64, 2>::new(RADIUS, LENGTH),
-                },
-                SVector::repeat(s),
-                Kinematics::Axisymmetric,
-            );
-            let bar = solver.add_body(
-                "bar",
-                super::material(materials, impact.material),
-                &points,
-                SVector::<f64, 2>::new(0.0, -impact.velocity),
-            );
-            if kernel.needs_domains() {
-                solver.set_half_size(bar, SVector::repeat(0.5 * s));
-            }
-            solver.velocity_bcs.push(VelocityBc::wall(1, 0.0, true));
+            let material = super::material(materials, impact.material);
+            let solver = axisymmetric_bar(material, kernel, impact.velocity, (spacing, s));
             run(model, solver, s, end)
         }
         Model::QuarterSolid => {
@@ -189,39 +170,113 @@ pub fn taylor_bar(
     }
 }
 
+/// The axisymmetric bar of `material` at `velocity` [m/s] towards the wall z = 0, on a
+/// grid of `spacing` [m] with particles `s` [m] apart (the axis and the one-sided wall as
+/// velocity conditions), ready to initialize.
+pub fn axisymmetric_bar(
+    material: Arc<dyn Material>,
+    kernel: ShapeFunction,
+    velocity: f64,
+    (spacing, s): (f64, f64),
+) -> Solver<2> {
+    let mut settings = Settings::<2>::new(Kinematics::Axisymmetric, spacing);
+    settings.scheme = Scheme::Musl;
+    settings.safety = 0.3;
+    settings.shape_function = kernel;
+    let mut solver = Solver::new(settings);
+    solver.velocity_bcs.push(VelocityBc::axis());
+    let points = fill(
+        &Geometry::Box {
+            min: SVector::<f64, 2>::new(0.0, 0.0),
+            max: SVector::<f64, 2>::new(RADIUS, LENGTH),
+        },
+        SVector::repeat(s),
+        Kinematics::Axisymmetric,
+    );
+    let bar = solver.add_body(
+        "bar",
+        material,
+        &points,
+        SVector::<f64, 2>::new(0.0, -velocity),
+    );
+    if kernel.needs_domains() {
+        solver.set_half_size(bar, SVector::repeat(0.5 * s));
+    }
+    solver.velocity_bcs.push(VelocityBc::wall(1, 0.0, true));
+    solver
+}
+
+/// The particles that mark the bar's shape: the control particle nearest the top of the
+/// axis and the bottom layer (those that start within one particle spacing `s` [m] of
+/// the wall).
+pub fn markers<const D: usize>(solver: &Solver<D>, s: f64) -> (usize, Vec<usize>) {
+    let mut axis_top = SVector::<f64, D>::zeros();
+    axis_top[D - 1] = LENGTH;
+    let top = solver.nearest_particle(&axis_top);
+    let bottom = (0..solver.particles.len())
+        .filter(|&i| solver.particles.position[i][D - 1] < s)
+        .collect();
+    (top, bottom)
+}
+
+/// A point's position, F and volume, in any scalar (dual with the derivative pass).
+pub type PointShape<T, const D: usize> = (SVector<T, D>, Matrix3<T>, T);
+
 /// Final length, footprint diameter and area-equivalent footprint diameter of the current
-/// state; `bottom` are the particles of the bottom layer, `top` the control particle, `s`
-/// the particle spacing, `copies` how many copies of the model make the bar (1 or 4).
-fn measure<const D: usize>(
+/// state whose point i is `point(i)`; `bottom` are the particles of the bottom layer,
+/// `top` the control particle, `s` the particle spacing, `copies` how many copies of the
+/// model make the bar (1 or 4).
+pub fn measure<T: Scalar, const D: usize>(
+    point: impl Fn(usize) -> PointShape<T, D>,
+    (top, bottom): (usize, &[usize]),
+    s: f64,
+    copies: f64,
+) -> (T, T, T) {
+    let axial = D - 1;
+    let half = c::<T>(0.5 * s);
+    let (x_top, f_top, _) = point(top);
+    let length = x_top[axial] + half * f_top[(axial, axial)];
+    let mut radius = T::zero();
+    let mut area = T::zero();
+    for &i in bottom {
+        let (x, f, volume) = point(i);
+        let r = (0..axial)
+            .map(|k| x[k] * x[k])
+            .fold(T::zero(), |a, b| a + b)
+            .sqrt();
+        // radial unit vector in the first D − 1 coordinates (the 3×3 F's indices)
+        let e: [T; 2] = std::array::from_fn(|k| if k < axial { x[k] / r } else { T::zero() });
+        let stretch = (0..axial)
+            .flat_map(|a| (0..axial).map(move |b| (a, b)))
+            .map(|(a, b)| e[a] * f[(a, b)] * e[b])
+            .fold(T::zero(), |a, b| a + b);
+        let edge = r + half * stretch;
+        if edge.re() > radius.re() {
+            radius = edge;
+        }
+        // the particle's share of the wall: its volume over its height s F_zz
+        area += volume / (c::<T>(s) * f[(axial, axial)]);
+    }
+    (
+        length,
+        c::<T>(2.0) * radius,
+        c::<T>(2.0) * (c::<T>(copies) * area / c::<T>(std::f64::consts::PI)).sqrt(),
+    )
+}
+
+/// `measure` of the run's own state.
+fn measure_real<const D: usize>(
     solver: &Solver<D>,
-    top: usize,
-    bottom: &[usize],
+    marked: (usize, &[usize]),
     s: f64,
     copies: f64,
 ) -> (f64, f64, f64) {
     let p = &solver.particles;
-    let axial = D - 1;
-    let length = p.position[top][axial] + 0.5 * s * p.deformation[top][(axial, axial)];
-    let mut radius: f64 = 0.0;
-    let mut area = 0.0;
-    for &i in bottom {
-        let x = &p.position[i];
-        let r = (0..axial).map(|k| x[k] * x[k]).sum::<f64>().sqrt();
-        // radial unit vector in the first D − 1 coordinates (the 3×3 F's indices)
-        let e: [f64; 2] = std::array::from_fn(|k| if k < axial { x[k] / r } else { 0.0 });
-        let f = &p.deformation[i];
-        let stretch: f64 = (0..axial)
-            .flat_map(|a| (0..axial).map(move |b| (a, b)))
-            .map(|(a, b)| e[a] * f[(a, b)] * e[b])
-            .sum();
-        radius = radius.max(r + 0.5 * s * stretch);
-        // the particle's share of the wall: its volume over its height s F_zz
-        area += p.volume[i] / (s * f[(axial, axial)]);
-    }
-    (
-        length,
-        2.0 * radius,
-        2.0 * (copies * area / std::f64::consts::PI).sqrt(),
+    measure(
+        |i| (p.position[i], p.deformation[i], p.volume[i]),
+        marked,
+        s,
+        copies,
     )
 }
 
@@ -232,12 +287,7 @@ fn run<const D: usize>(
     end: f64,
 ) -> Result<TaylorResult, SimulationError> {
     let started = Instant::now();
-    let mut axis_top = SVector::<f64, D>::zeros();
-    axis_top[D - 1] = LENGTH;
-    let top = solver.nearest_particle(&axis_top);
-    let bottom: Vec<usize> = (0..solver.particles.len())
-        .filter(|&i| solver.particles.position[i][D - 1] < s)
-        .collect();
+    let (top, bottom) = markers(&solver, s);
     solver.initialize();
     let sample = 1e-6;
     let mut history = vec![(0.0, 0.0, 0.0, 0.0)];
@@ -246,16 +296,16 @@ fn run<const D: usize>(
     } else {
         1.0
     };
-    let (l0, d0, a0) = measure(&solver, top, &bottom, s, copies);
+    let (l0, d0, a0) = measure_real(&solver, (top, &bottom), s, copies);
     history[0] = (0.0, l0, d0, a0);
     while solver.time < end - 0.5 * solver.dt {
         solver.step()?;
         if solver.time >= history.len() as f64 * sample - 0.5 * solver.dt {
-            let (l, d, a) = measure(&solver, top, &bottom, s, copies);
+            let (l, d, a) = measure_real(&solver, (top, &bottom), s, copies);
             history.push((solver.time, l, d, a));
         }
     }
-    let (length, footprint, footprint_area) = measure(&solver, top, &bottom, s, copies);
+    let (length, footprint, footprint_area) = measure_real(&solver, (top, &bottom), s, copies);
     let earlier = history
         .iter()
         .rev()

@@ -1,0 +1,81 @@
+//! Models with seeded parameters for the derivative pass of an MPM run: each free
+//! parameter carries a unit dual part in its own direction, and an update in dual
+//! arithmetic returns σ and the new state with their total derivatives along the
+//! directions, given the dual parts of F and of the old state (forward mode; the return
+//! mapping differentiates by the implicit function theorem, module `plasticity`).
+
+use crate::ad::seed;
+use crate::error::MaterialError;
+use crate::material::{Model, State};
+use crate::scalar::c;
+use crate::tensor::M3;
+use num_dual::DualSVec64;
+
+/// A dual number with derivatives in `P` directions (the free parameters of a fit).
+pub type Dual<const P: usize> = DualSVec64<P>;
+
+/// A model whose free parameters carry unit dual parts, one direction each: an update in
+/// dual arithmetic gives σ and the new state with their total derivatives along the
+/// directions, given the inputs' own dual parts (the derivative pass through an MPM run,
+/// `mpm_core::solver::Tangent`). Object-safe, so that blocks of different models share
+/// one pass.
+pub trait SeededModel<const P: usize>: Send + Sync {
+    /// `Model::update` in dual arithmetic.
+    fn update(
+        &self,
+        f: &M3<Dual<P>>,
+        dt: f64,
+        old: &State<Dual<P>>,
+    ) -> Result<(M3<Dual<P>>, State<Dual<P>>), MaterialError>;
+    /// The initial state with its derivatives (nonzero when e.g. θ0 is free).
+    fn initial_state(&self) -> State<Dual<P>>;
+    /// ρ0 with its derivatives.
+    fn density(&self) -> Dual<P>;
+    /// Λ + 2G with its derivatives.
+    fn p_wave_modulus(&self) -> Dual<P>;
+}
+
+impl<const P: usize, M: Model<Dual<P>>> SeededModel<P> for M {
+    fn update(
+        &self,
+        f: &M3<Dual<P>>,
+        dt: f64,
+        old: &State<Dual<P>>,
+    ) -> Result<(M3<Dual<P>>, State<Dual<P>>), MaterialError> {
+        Model::update(self, f, dt, old)
+    }
+    fn initial_state(&self) -> State<Dual<P>> {
+        Model::initial_state(self)
+    }
+    fn density(&self) -> Dual<P> {
+        Model::density(self)
+    }
+    fn p_wave_modulus(&self) -> Dual<P> {
+        Model::p_wave_modulus(self)
+    }
+}
+
+/// `model` with parameter `free[k]` seeded in direction k; `Err` names a parameter the
+/// model does not have.
+pub fn seeded<M, const P: usize>(
+    model: &M,
+    free: &[&str; P],
+) -> Result<Box<dyn SeededModel<P>>, String>
+where
+    M: Model<f64>,
+    M::With<Dual<P>>: 'static,
+{
+    let names = model.param_names();
+    if let Some(missing) = free.iter().find(|n| !names.contains(n)) {
+        return Err(format!(
+            "the model has no parameter `{missing}` (it has {})",
+            names.join(", ")
+        ));
+    }
+    Ok(Box::new(model.map_params(
+        |name, v| match free.iter().position(|n| *n == name) {
+            Some(k) => seed::<P>(v, k),
+            None => c(v),
+        },
+    )))
+}

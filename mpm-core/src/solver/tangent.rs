@@ -1,0 +1,394 @@
+//! Exact derivatives of an explicit run with respect to material parameters, in forward
+//! mode: beside every point's x, v, ṽ, F, σ, V and history and every node's m, p, f, v, a,
+//! the pass carries their derivatives along `P` directions (the free parameters of a fit)
+//! as the dual parts of `Dual<P>` numbers.
+//!
+//! Each stage's derivative runs just before the stage itself and reads the state the
+//! stage reads (its contract, `Stage::reads`): real parts from the solver, dual parts from
+//! here, through the same generic code as the stage (`linear` weights, `PointShare`,
+//! `NodeSolve`, `interpolate`, `Kinematics::deformation`, `Deformation::with_viscosity`,
+//! and the material's update in dual arithmetic, `SeededModel`). Its real parts are the
+//! stage's own numbers, so it takes every branch the run takes: the cell that holds a
+//! point, the nodes above the mass cutoff, where a one-sided wall acts, whether a point
+//! yields. What it gives is the derivative of the discrete run at a fixed sequence of
+//! Δt and of those decisions: exact between events, and at an event (first yield, a point
+//! crossing a cell face, a wall letting go) the one-sided derivative of the branch the run
+//! took, where the run itself has a kink.
+//!
+//! Cost: one dual update per point and step (the return mapping by the implicit function
+//! theorem: one extra Newton step in dual arithmetic) and the transfers in P + 1 lanes.
+//! Memory: (P + 1) numbers for each real one of the state; no tape.
+//!
+//! Held fixed, and so refused as free parameters: anything that changes ρ0 (the masses) or
+//! the wave speed (Δt). Not carried yet, and refused with the reason: shape functions
+//! other than linear (their weights depend on F through the domain), rigid bodies and bars
+//! (penalty contact), and point conditions (springs).
+
+use super::gather::{interpolate, Deformation};
+use super::grid_solve::{NodalUpdate, NodeSolve};
+use super::scatter::{PointShare, Transfer};
+use super::{Solver, Stage};
+use crate::failure::{Cause, SimulationError};
+use crate::grid::{Grid, Node};
+use crate::shape::{corners, linear, ShapeFunction};
+use materials::scalar::c;
+use materials::seeded::{Dual, SeededModel};
+use materials::tensor::det;
+use materials::State;
+use nalgebra::{Matrix3, SMatrix, SVector};
+use rayon::prelude::*;
+
+/// Why a run cannot carry exact derivatives (yet).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("exact derivatives: {0}")]
+pub struct Unsupported(pub String);
+
+/// The derivatives of a run's state along `P` parameter directions.
+pub struct Tangent<const D: usize, const P: usize> {
+    /// One seeded model per material block of the solver.
+    models: Vec<Box<dyn SeededModel<P>>>,
+    position: Vec<SVector<Dual<P>, D>>,
+    velocity: Vec<SVector<Dual<P>, D>>,
+    grid_velocity: Vec<SVector<Dual<P>, D>>,
+    deformation: Vec<Matrix3<Dual<P>>>,
+    stress: Vec<Matrix3<Dual<P>>>,
+    volume: Vec<Dual<P>>,
+    /// History of every point (by point index; a block's points are contiguous).
+    state: Vec<State<Dual<P>>>,
+    nodes: Vec<Node<D, Dual<P>>>,
+}
+
+/// `re` with the derivatives of `d`.
+#[inline]
+fn join<const P: usize>(re: f64, d: Dual<P>) -> Dual<P> {
+    Dual::new(re, d.eps)
+}
+
+/// Every entry of `re` with the derivatives of the same entry of `d`.
+#[inline]
+fn join_all<const R: usize, const C: usize, const P: usize>(
+    re: &SMatrix<f64, R, C>,
+    d: &SMatrix<Dual<P>, R, C>,
+) -> SMatrix<Dual<P>, R, C> {
+    re.zip_map(d, join)
+}
+
+/// `re` with the derivatives of `d`.
+fn join_state<const P: usize>(re: &State<f64>, d: &State<Dual<P>>) -> State<Dual<P>> {
+    State {
+        fp_inv: join_all(&re.fp_inv, &d.fp_inv),
+        alpha: join(re.alpha, d.alpha),
+        theta: join(re.theta, d.theta),
+        dalpha: join(re.dalpha, d.dalpha),
+    }
+}
+
+/// Linear weights of a point at `x` with its derivatives: the nodes of its cell, N and
+/// ∇N (dual parts ∇N·dx and (∂²N/∂x²) dx).
+#[inline]
+fn weights<const D: usize, const P: usize>(
+    grid: &Grid<D>,
+    x: &SVector<Dual<P>, D>,
+) -> ([u32; 8], [Dual<P>; 8], [SVector<Dual<P>, D>; 8]) {
+    let (base, xi) = grid.locate(&x.map(|x| x.re));
+    let xi =
+        SVector::<Dual<P>, D>::from_fn(|i, _| Dual::new(xi[i], x[i].eps * grid.inv_spacing[i]));
+    let w = linear(&xi, &grid.inv_spacing);
+    let offsets = grid.corner_offsets();
+    (
+        std::array::from_fn(|k| (base + offsets[k]) as u32),
+        w.n,
+        w.grad,
+    )
+}
+
+impl<const D: usize, const P: usize> Tangent<D, P> {
+    /// Start the derivative pass of `solver` before its first step, with `models[b]` the
+    /// model of block b with its free parameters seeded (`materials::seeded::seeded`).
+    pub fn new(
+        solver: &Solver<D>,
+        models: Vec<Box<dyn SeededModel<P>>>,
+    ) -> Result<Self, Unsupported> {
+        let refuse = |why: String| Err(Unsupported(why));
+        if solver.step != 0 {
+            return refuse(format!(
+                "the pass starts with the run, and this one is at step {}",
+                solver.step
+            ));
+        }
+        if models.len() != solver.blocks.len() {
+            return refuse(format!(
+                "{} seeded models for {} material blocks",
+                models.len(),
+                solver.blocks.len()
+            ));
+        }
+        for (b, (block, model)) in solver.blocks.iter().zip(&models).enumerate() {
+            let kernel = solver.kernel_of(b);
+            if kernel != ShapeFunction::Linear {
+                return refuse(format!(
+                    "body `{}` runs {} shape functions; the pass carries linear ones only (shape_function = \"linear\")",
+                    block.name,
+                    kernel.name()
+                ));
+            }
+            let (rho, modulus) = (model.density(), model.p_wave_modulus());
+            if rho.re != block.material.density() || modulus.re != block.material.p_wave_modulus() {
+                return refuse(format!(
+                    "the seeded model of body `{}` is not its material (ρ0 {} against {}, Λ+2G {} against {})",
+                    block.name, rho.re, block.material.density(), modulus.re, block.material.p_wave_modulus()
+                ));
+            }
+            let depends = |x: Dual<P>| x.eps.0.is_some_and(|e| e.iter().any(|d| *d != 0.0));
+            if depends(rho) || depends(modulus) {
+                return refuse(format!(
+                    "a free parameter of body `{}` changes ρ0 or the wave speed, which set the masses and Δt; free only the flow-stress and thermal parameters",
+                    block.name
+                ));
+            }
+        }
+        if !solver.rigid.is_empty() {
+            return refuse("rigid bodies and bars (penalty contact) are not carried".into());
+        }
+        if !solver.conditions.is_empty() {
+            return refuse("point conditions (springs) are not carried".into());
+        }
+        let n = solver.particles.len();
+        let zero = SVector::zeros();
+        let mut state = Vec::with_capacity(n);
+        for (block, model) in solver.blocks.iter().zip(&models) {
+            state.extend(std::iter::repeat_n(
+                model.initial_state(),
+                block.range.len(),
+            ));
+        }
+        Ok(Tangent {
+            models,
+            position: vec![zero; n],
+            velocity: vec![zero; n],
+            grid_velocity: vec![zero; n],
+            deformation: vec![Matrix3::zeros(); n],
+            stress: vec![Matrix3::zeros(); n],
+            volume: vec![Dual::from_re(0.0); n],
+            state,
+            nodes: Vec::new(),
+        })
+    }
+
+    /// Position of point `i` with its derivatives.
+    pub fn position(&self, solver: &Solver<D>, i: usize) -> SVector<Dual<P>, D> {
+        join_all(&solver.particles.position[i], &self.position[i])
+    }
+
+    /// Velocity of point `i` with its derivatives.
+    pub fn velocity(&self, solver: &Solver<D>, i: usize) -> SVector<Dual<P>, D> {
+        join_all(&solver.particles.velocity[i], &self.velocity[i])
+    }
+
+    /// F of point `i` with its derivatives.
+    pub fn deformation(&self, solver: &Solver<D>, i: usize) -> Matrix3<Dual<P>> {
+        join_all(&solver.particles.deformation[i], &self.deformation[i])
+    }
+
+    /// σ of point `i` with its derivatives.
+    pub fn stress(&self, solver: &Solver<D>, i: usize) -> Matrix3<Dual<P>> {
+        join_all(&solver.particles.stress[i], &self.stress[i])
+    }
+
+    /// Volume of point `i` with its derivatives.
+    pub fn volume(&self, solver: &Solver<D>, i: usize) -> Dual<P> {
+        join(solver.particles.volume[i], self.volume[i])
+    }
+
+    /// The derivative of `stage`, from the state before it.
+    fn before(&mut self, stage: Stage, s: &Solver<D>) -> Result<(), SimulationError> {
+        use Stage::*;
+        match stage {
+            MapMassMomentumForce => self.map(s, Transfer::ALL),
+            MapMassMomentum => self.map(s, Transfer::MASS_MOMENTUM),
+            MapForce => self.map(s, Transfer::FORCE),
+            MapMomentum => self.map(s, Transfer::MOMENTUM),
+            SolveMomentum => self.solve(s, NodalUpdate::Accelerate),
+            NodalVelocity => self.solve(s, NodalUpdate::VelocityOnly),
+            UpdateVelocity => self.gather(s, true, false)?,
+            UpdateStress => self.gather(s, false, true)?,
+            UpdateVelocityAndStress => self.gather(s, true, true)?,
+            Advect => self.advect(s),
+            // the grid's lattice and the forces applied to points do not depend on the
+            // parameters; Δt is held
+            FitGrid | AppliedForces | ContactForces | BarFaces | AdvanceTime | CheckEnergy
+            | CheckTimeStep => {}
+        }
+        Ok(())
+    }
+
+    /// Derivatives of the transfer `t` (algorithm 9), point by point in index order.
+    fn map(&mut self, s: &Solver<D>, t: Transfer) {
+        if t.mass {
+            self.nodes.clear();
+            self.nodes.resize(s.grid.nodes.len(), Node::zero());
+        }
+        for n in &mut self.nodes {
+            if t.momentum {
+                n.momentum = SVector::zeros();
+            }
+            if t.force {
+                n.force = SVector::zeros();
+            }
+        }
+        let p = &s.particles;
+        for i in 0..p.len() {
+            let x = self.position(s, i);
+            let external = (s.scratch.force[i] + s.settings.body_force * p.mass[i]).map(c);
+            let share = PointShare::new(
+                p.mass[i],
+                &self.velocity(s, i),
+                external,
+                (&self.stress(s, i), self.volume(s, i), &x),
+                s.settings.kinematics,
+            );
+            let (node, n, grad) = weights(&s.grid, &x);
+            for k in 0..corners(D) {
+                share.add_to(&mut self.nodes[node[k] as usize], t, n[k], &grad[k]);
+            }
+        }
+    }
+
+    /// Derivatives of the grid solve (algorithm 10) and the velocity conditions.
+    fn solve(&mut self, s: &Solver<D>, update: NodalUpdate) {
+        let (time, dt) = (s.time, s.dt);
+        let damping = s.settings.damping;
+        let solve = NodeSolve::new(&s.velocity_bcs, (time, dt), damping, s.mass_cutoff, update);
+        let mut work = (0.0, 0.0, 0.0);
+        for (index, (node, real)) in self.nodes.iter_mut().zip(&s.grid.nodes).enumerate() {
+            if real.mass <= 0.0 {
+                node.velocity = SVector::zeros();
+                node.acceleration = SVector::zeros();
+                continue;
+            }
+            node.mass = join(real.mass, node.mass);
+            node.heaviest = real.heaviest;
+            node.momentum = join_all(&real.momentum, &node.momentum);
+            node.force = join_all(&real.force, &node.force);
+            let v_old = solve.solve(node, &mut work);
+            if !s.velocity_bcs.is_empty() {
+                let x = s.grid.node_position(index);
+                solve.constrain(node, &x, &s.grid.spacing, &v_old, &mut work);
+            }
+        }
+    }
+
+    /// Derivatives of the grid-to-particle transfer (algorithms 11-12): v and ṽ with
+    /// `motion`, F, σ, V and history with `deformation`, point by point in parallel.
+    fn gather(
+        &mut self,
+        s: &Solver<D>,
+        motion: bool,
+        deformation: bool,
+    ) -> Result<(), SimulationError> {
+        let cell = s.grid.min_spacing();
+        let updates: Vec<Deformation<'_>> = (s.blocks.iter())
+            .map(|b| Deformation::of(&*b.material, &s.settings, cell, s.dt))
+            .collect();
+        let Tangent {
+            models,
+            position,
+            velocity,
+            grid_velocity,
+            deformation: f,
+            stress,
+            volume,
+            state,
+            nodes,
+        } = self;
+        let dt = c::<Dual<P>>(s.dt);
+        let points = (
+            velocity.par_iter_mut(),
+            grid_velocity.par_iter_mut(),
+            f.par_iter_mut(),
+            stress.par_iter_mut(),
+            volume.par_iter_mut(),
+            state.par_iter_mut(),
+        );
+        let failure = points
+            .into_par_iter()
+            .enumerate()
+            .map(|(i, (v, vg, f, sigma, vol, st))| {
+                let x = join_all(&s.particles.position[i], &position[i]);
+                let (node, n, grad) = weights(&s.grid, &x);
+                let reach = corners(D);
+                let (v_grid, a, l) =
+                    interpolate(nodes, (&node[..reach], &n[..reach], &grad[..reach]));
+                if motion {
+                    *v = join_all(&s.particles.velocity[i], v) + a * dt;
+                    *vg = v_grid;
+                }
+                if !deformation {
+                    return None;
+                }
+                let b = s
+                    .blocks
+                    .iter()
+                    .position(|b| b.range.contains(&i))
+                    .expect("every point has a block");
+                let block = &s.blocks[b];
+                let (l3, f_new) = s.settings.kinematics.deformation(
+                    &l,
+                    &v_grid,
+                    (&x, &s.particles.reference_position[i]),
+                    &join_all(&s.particles.deformation[i], f),
+                    s.dt,
+                );
+                let old = join_state(&block.state[i - block.range.start], st);
+                let (sigma_new, state_new) = match models[b].update(&f_new, s.dt, &old) {
+                    Ok(new) => new,
+                    Err(e) => return Some((i, Cause::Material(e))),
+                };
+                let j = det(&f_new);
+                let d = (l3 + l3.transpose()) * c::<Dual<P>>(0.5);
+                *sigma = updates[b].with_viscosity(sigma_new, &d, j);
+                *vol = j * c::<Dual<P>>(s.particles.volume0[i]);
+                *f = f_new;
+                *st = state_new;
+                None
+            });
+        let earliest = failure.reduce(
+            || None,
+            |a, b| match (&a, &b) {
+                (Some((i, _)), Some((j, _))) if j < i => b,
+                _ => a.or(b),
+            },
+        );
+        match earliest {
+            Some((i, cause)) => Err(SimulationError {
+                step: s.step,
+                time: s.time,
+                particle: Some(i),
+                cause,
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// Derivative of x ← x + ṽ Δt.
+    fn advect(&mut self, s: &Solver<D>) {
+        let dt = c::<Dual<P>>(s.dt);
+        for (x, vg) in self.position.iter_mut().zip(&self.grid_velocity) {
+            *x += vg * dt;
+        }
+    }
+}
+
+impl<const D: usize> Solver<D> {
+    /// `step`, carrying the derivatives of `tangent` along.
+    pub fn step_with<const P: usize>(
+        &mut self,
+        tangent: &mut Tangent<D, P>,
+    ) -> Result<(), SimulationError> {
+        for &stage in self.settings.scheme.stages() {
+            tangent.before(stage, self)?;
+            self.run_stage(stage)?;
+        }
+        Ok(())
+    }
+}
