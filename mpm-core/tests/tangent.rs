@@ -158,6 +158,75 @@ fn plane_strain_usl_derivatives_match_central_differences() {
     check(Kinematics::PlaneStrain, Scheme::Usl, 100);
 }
 
+/// 3D, a 1 mm × 1 mm × 3 mm JC copper block at 150 m/s onto the wall z = 0, tilted by
+/// 20 m/s sideways, with the grid shifted every step (0.5 mm cells, 2×2×2 points per
+/// cell, 120 steps): the derivatives of the top corner's position with respect to A, B
+/// and C against central differences.
+#[test]
+fn solid_with_grid_shift_derivatives_match_central_differences() {
+    use nalgebra::Vector3;
+    let free = ["A", "B", "C"];
+    let build = |model: &ElastoPlastic| {
+        let h = 0.5e-3;
+        let mut settings = Settings::<3>::new(Kinematics::Solid, h);
+        settings.grid_shift = Some((Vector3::repeat(0.25 * h), 3));
+        let mut s = Solver::new(settings);
+        let points = fill(
+            &Geometry::Box {
+                min: Vector3::zeros(),
+                max: Vector3::new(1e-3, 1e-3, 3e-3),
+            },
+            Vector3::repeat(h / 2.0),
+            Kinematics::Solid,
+        );
+        s.add_body(
+            "block",
+            Arc::new(*model),
+            &points,
+            Vector3::new(20.0, 0.0, -150.0),
+        );
+        s.velocity_bcs.push(VelocityBc::wall(2, 0.0, true));
+        s.initialize();
+        s
+    };
+    let model = copper();
+    let steps = 120;
+    let mut s = build(&model);
+    let top = s.nearest_particle(&Vector3::new(1e-3, 1e-3, 3e-3));
+    let mut t = Tangent::new(&s, vec![seeded(&model, &free).unwrap()]).unwrap();
+    for _ in 0..steps {
+        s.step_with(&mut t).unwrap();
+    }
+    let exact = t.position(&s, top);
+    assert!(
+        s.blocks[0].state.iter().any(|st| st.alpha > 0.01),
+        "the block yields"
+    );
+    for (k, name) in free.iter().enumerate() {
+        let p = model.param(name).unwrap();
+        let at = |v: f64| {
+            let mut r = build(&model.map_params(|n, x| if n == *name { v } else { x }));
+            for _ in 0..steps {
+                r.step().unwrap();
+            }
+            r.particles.position[top]
+        };
+        let scale = (0..3)
+            .map(|c| exact[c].eps.0.unwrap()[k].abs())
+            .fold(0.0, f64::max);
+        let error = [1e-5, 1e-7].map(|rel| {
+            let h = rel * p;
+            let (up, down) = (at(p + h), at(p - h));
+            (0..3)
+                .map(|c| ((up[c] - down[c]) / (2.0 * h) - exact[c].eps.0.unwrap()[k]).abs() / scale)
+                .fold(0.0, f64::max)
+        });
+        let error = error[0].min(error[1]);
+        eprintln!("3D d(top)/d{name}: error {error:.1e} of {scale:.3e}");
+        assert!(error < 3e-5, "d/d{name}: {error:e}");
+    }
+}
+
 #[test]
 fn a_kernel_the_pass_does_not_carry_is_refused_with_the_reason() {
     let model = copper();

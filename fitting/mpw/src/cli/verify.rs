@@ -242,7 +242,7 @@ fn truss_chart(scenes: &Path, out: &Path) -> Result<()> {
 /// through the impact (exact derivatives, scaled by the parameter).
 fn taylor_derivative_charts(materials: &Path, out: &Path) -> Result<()> {
     use crate::verify::mpm::taylor_derivatives::{Study, FREE, QUANTITIES, STEPS};
-    let study = Study::run(materials)?;
+    let study = Study::run(materials, &STEPS)?;
     for (q, file) in [(0, "length"), (2, "footprint")] {
         let mut noise = LineChart::new(
             format!(

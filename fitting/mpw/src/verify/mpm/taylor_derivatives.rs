@@ -27,8 +27,10 @@ use std::time::Instant;
 pub const FREE: [&str; 5] = ["A", "B", "N", "C", "M"];
 /// The observed quantities, in the order of the values.
 pub const QUANTITIES: [&str; 3] = ["L_f", "D_f", "D_A"];
-/// The relative steps h/p of the central differences.
+/// The relative steps h/p of the central differences for the chart of their error.
 pub const STEPS: [f64; 7] = [1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8];
+/// The steps of the `mpw verify` rows.
+pub const ROW_STEPS: [f64; 4] = [1e-3, 1e-5, 1e-7, 1e-8];
 
 /// ∂q/∂p for each quantity (row) and parameter (column) [m per parameter unit].
 pub type Jacobian<const P: usize = 5> = [[f64; P]; 3];
@@ -153,24 +155,22 @@ pub fn central(
 }
 
 /// The exact run, and the central differences for every parameter (outer) and step of
-/// `STEPS` (inner), in parallel.
+/// `steps` (inner), in parallel.
 pub fn sweep(
     model: &AnyModel,
-    dx: f64,
-    end: f64,
+    (dx, end): (f64, f64),
+    steps: &[f64],
 ) -> anyhow::Result<(Derivatives, Vec<Vec<[f64; 3]>>)> {
     let exact = with_derivatives(model, &FREE, dx, end)?;
-    let runs: Vec<(usize, usize)> = (0..FREE.len())
-        .flat_map(|k| (0..STEPS.len()).map(move |j| (k, j)))
+    let runs: Vec<(usize, f64)> = (0..FREE.len())
+        .flat_map(|k| steps.iter().map(move |&rel| (k, rel)))
         .collect();
     let fd: Result<Vec<[f64; 3]>, SimulationError> = runs
         .par_iter()
-        .map(|&(k, j)| central(model, (dx, end), k, STEPS[j]))
+        .map(|&(k, rel)| central(model, (dx, end), k, rel))
         .collect();
     let fd = fd?;
-    let table = (0..FREE.len())
-        .map(|k| fd[k * STEPS.len()..(k + 1) * STEPS.len()].to_vec())
-        .collect();
+    let table = fd.chunks(steps.len()).map(<[_]>::to_vec).collect();
     Ok((exact, table))
 }
 
@@ -186,7 +186,9 @@ pub fn scale(model: &AnyModel, exact: &Jacobian, q: usize) -> f64 {
 pub struct Study {
     pub model: AnyModel,
     pub exact: Derivatives,
-    /// `central[k][j]`: parameter k, step `STEPS[j]`.
+    /// The relative steps of the central differences.
+    pub steps: Vec<f64>,
+    /// `central[k][j]`: parameter k, step `steps[j]`.
     pub central: Vec<Vec<[f64; 3]>>,
     pub plain_wall: f64,
 }
@@ -195,32 +197,34 @@ pub struct Study {
 pub const END: f64 = 80e-6;
 
 impl Study {
-    pub fn run(materials: &Path) -> anyhow::Result<Study> {
+    /// The study with central differences at the relative steps `steps`.
+    pub fn run(materials: &Path, steps: &[f64]) -> anyhow::Result<Study> {
         let model = load_material(materials.join(COPPER.material))?.model;
         let (_, plain_wall) = plain(&model, COARSE, END)?;
-        let (exact, central) = sweep(&model, COARSE, END)?;
+        let (exact, central) = sweep(&model, (COARSE, END), steps)?;
         Ok(Study {
             model,
             exact,
+            steps: steps.to_vec(),
             central,
             plain_wall,
         })
     }
 
-    /// |central − exact| · p / scale of quantity `q`, parameter `k`, step `STEPS[j]`.
+    /// Index of the relative step `rel` in `steps`.
+    fn step_index(&self, rel: f64) -> usize {
+        self.steps
+            .iter()
+            .position(|&h| h == rel)
+            .expect("a step of the study")
+    }
+
+    /// |central − exact| · p / scale of quantity `q`, parameter `k`, step `steps[j]`.
     pub fn error(&self, q: usize, k: usize, j: usize) -> f64 {
         let p = self.model.param(FREE[k]).unwrap_or(f64::NAN);
         let d = self.exact.exact[q][k];
         (self.central[k][j][q] - d).abs() * p / scale(&self.model, &self.exact.exact, q)
     }
-}
-
-/// Index of a step in `STEPS`.
-fn step_index(rel: f64) -> usize {
-    STEPS
-        .iter()
-        .position(|&h| h == rel)
-        .expect("a step of STEPS")
 }
 
 /// `mpw verify` rows: the exact derivative of each quantity and parameter against the
@@ -230,14 +234,14 @@ fn step_index(rel: f64) -> usize {
 /// over ±1e-4 in A.
 pub fn cases(materials: &Path, full: bool, out: &mut Vec<Row>) {
     let name = "mpm/taylor-derivatives";
-    let study = match Study::run(materials) {
+    let study = match Study::run(materials, &ROW_STEPS) {
         Ok(s) => s,
         Err(e) => {
             out.push(Row::holds(format!("{name}: {e}"), false));
             return;
         }
     };
-    let small = [step_index(1e-7), step_index(1e-8)];
+    let small = [study.step_index(1e-7), study.step_index(1e-8)];
     for (q, quantity) in QUANTITIES.iter().enumerate() {
         for (k, parameter) in FREE.iter().enumerate() {
             let error = small.map(|j| study.error(q, k, j));
@@ -251,7 +255,7 @@ pub fn cases(materials: &Path, full: bool, out: &mut Vec<Row>) {
         }
         for rel in [1e-3, 1e-5] {
             let worst = (0..FREE.len())
-                .map(|k| study.error(q, k, step_index(rel)))
+                .map(|k| study.error(q, k, study.step_index(rel)))
                 .fold(0.0, f64::max);
             out.push(Row::reported(
                 format!("{name}/d{quantity} central at h/p {rel:.0e}: largest error / scale"),
