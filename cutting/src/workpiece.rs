@@ -103,6 +103,7 @@ pub fn scene(
         output: OutputSpec {
             history_every: options.history_every,
             snapshots: options.snapshots,
+            derivatives: Vec::new(),
         },
     }
 }

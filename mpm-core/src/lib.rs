@@ -18,6 +18,7 @@
 pub mod bar;
 pub mod boundary;
 pub mod contact;
+pub mod derivative_history;
 pub mod discretize;
 pub mod failure;
 pub mod grid;

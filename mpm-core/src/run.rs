@@ -8,15 +8,17 @@
 //! `Interrupted`: its last state written, its results collected. Points that reach their
 //! melting temperature are reported in the summary (`melting`), not stopped.
 
+use crate::derivative_history::{self, Stepper};
 use crate::failure::{Cause, SimulationError};
 use crate::limits::TIME_STEPS;
 use crate::melting::{Melting, MeltingWatch};
 use crate::output::{HistoryWriter, SnapshotWriter};
 use crate::results::{self, NamedResult, RestTracker};
-use crate::scene::{Scene, Simulation};
+use crate::scene::{OutputSpec, Scene, Simulation};
 use crate::solver::observer::{Every, Observer};
 use crate::solver::TimeStep;
 use crate::solver::{RunError, Solver, TimeStepChange};
+use materials::AnyModel;
 use std::ops::ControlFlow;
 use std::path::Path;
 
@@ -46,18 +48,18 @@ pub fn run_scene(
     match scene.simulation {
         Simulation::Planar(s) => run(
             s,
+            &scene.models,
+            &scene.output,
             scene.end,
-            scene.output.history_every,
-            scene.output.snapshots,
             dir,
             start,
             progress,
         ),
         Simulation::Solid(s) => run(
             s,
+            &scene.models,
+            &scene.output,
             scene.end,
-            scene.output.history_every,
-            scene.output.snapshots,
             dir,
             start,
             progress,
@@ -67,13 +69,21 @@ pub fn run_scene(
 
 fn run<const D: usize>(
     mut solver: Solver<D>,
+    models: &[AnyModel],
+    output: &OutputSpec,
     end: f64,
-    history_every: usize,
-    snapshots: usize,
     dir: &Path,
     start: impl FnOnce(&TimeStep),
     mut progress: impl FnMut(f64, f64) -> ControlFlow<()>,
 ) -> std::io::Result<RunSummary> {
+    let (history_every, snapshots) = (output.history_every, output.snapshots);
+    let mut step: Stepper<'_, D> = match output.derivatives.is_empty() {
+        true => Box::new(|s: &mut Solver<D>| Ok(s.step()?)),
+        false => {
+            derivative_history::stepper(&solver, models, &output.derivatives, (dir, history_every))
+                .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidInput, e))?
+        }
+    };
     let time_step = solver.initialize();
     start(&time_step);
     let mut history = Every {
@@ -109,7 +119,7 @@ fn run<const D: usize>(
             particle: None,
             cause: Cause::TooManySteps(e),
         })),
-        Ok(_) => solver.run_until(end, &mut observers),
+        Ok(_) => solver.run_until_by(end, &mut observers, &mut step),
     };
     let result = match result {
         Ok(ControlFlow::Break(())) => Err(RunError::Simulation(SimulationError {

@@ -11,7 +11,7 @@ use crate::limits::PARTICLES;
 use crate::mesh::{self, MeshPoint};
 use crate::shape::ShapeFunction;
 use crate::solver::Solver;
-use materials::Material;
+use materials::{AnyModel, Material};
 use nalgebra::SVector;
 use std::collections::HashMap;
 use std::path::Path;
@@ -87,21 +87,19 @@ pub(super) fn add_bodies<const D: usize>(
     solver: &mut Solver<D>,
     spec: &SceneFile,
     check: &Check,
-    materials: &HashMap<&str, Arc<dyn Material>>,
+    materials: &HashMap<&str, AnyModel>,
 ) -> Result<(), SceneError> {
     let (h, kinematics) = (solver.settings.spacing, solver.settings.kinematics);
     let mut particles = 0.0;
     for (k, b) in spec.bodies.iter().enumerate() {
         let field = format!("bodies[{k}]");
-        let material = materials
-            .get(b.material.as_str())
-            .ok_or_else(|| {
-                check.err(
-                    format!("{field}.material"),
-                    format!("no material named `{}`", b.material),
-                )
-            })?
-            .clone();
+        let model = materials.get(b.material.as_str()).ok_or_else(|| {
+            check.err(
+                format!("{field}.material"),
+                format!("no material named `{}`", b.material),
+            )
+        })?;
+        let material: Arc<dyn Material> = Arc::new(*model);
         let sf = format!("{field}.shape");
         let velocity = b
             .velocity

@@ -5,10 +5,9 @@ use super::check::Check;
 use super::spec::SceneFile;
 use super::SceneError;
 use materials::param_file::parse_material;
-use materials::{load_material, AnyModel, Material, NeoHooke};
+use materials::{load_material, AnyModel, NeoHooke};
 use std::collections::HashMap;
 use std::path::Path;
-use std::sync::Arc;
 
 /// A material given inline: checked as a parameter file would be, named by the field.
 fn inline(table: &toml::Table, check: &Check, field: &str) -> Result<AnyModel<f64>, SceneError> {
@@ -20,22 +19,23 @@ fn inline(table: &toml::Table, check: &Check, field: &str) -> Result<AnyModel<f6
         .map_err(|e| check.err(format!("{field}.parameters"), e.to_string()))
 }
 
-/// Every material of the scene by name.
+/// Every material of the scene by name (the model itself: a derivative pass seeds its
+/// parameters, `solver::Tangent`).
 pub(super) fn materials<'s>(
     spec: &'s SceneFile,
     check: &Check,
     dir: &Path,
-) -> Result<HashMap<&'s str, Arc<dyn Material>>, SceneError> {
-    let mut materials: HashMap<&str, Arc<dyn Material>> = HashMap::new();
+) -> Result<HashMap<&'s str, AnyModel>, SceneError> {
+    let mut materials: HashMap<&str, AnyModel> = HashMap::new();
     for (k, m) in spec.materials.iter().enumerate() {
         let field = format!("materials[{k}]");
-        let material: Arc<dyn Material> = match (&m.file, &m.neo_hooke, &m.parameters) {
-            (Some(f), None, None) => Arc::new(
+        let material = match (&m.file, &m.neo_hooke, &m.parameters) {
+            (Some(f), None, None) => {
                 load_material(dir.join(f))
                     .map_err(|e| check.err(format!("{field}.file"), e.to_string()))?
-                    .model,
-            ),
-            (None, None, Some(table)) => Arc::new(inline(table, check, &field)?),
+                    .model
+            }
+            (None, None, Some(table)) => inline(table, check, &field)?,
             (None, Some(n), None) => {
                 check.positive(&format!("{field}.neo_hooke.E"), n.e)?;
                 check.positive(&format!("{field}.neo_hooke.rho"), n.rho)?;
@@ -45,7 +45,7 @@ pub(super) fn materials<'s>(
                         format!("must be in (-1, 0.5), got {}", n.nu),
                     ));
                 }
-                Arc::new(NeoHooke::new(n.e, n.nu, n.rho))
+                AnyModel::NeoHooke(NeoHooke::new(n.e, n.nu, n.rho))
             }
             _ => {
                 return Err(check.err(

@@ -45,7 +45,9 @@ pub use spec::*;
 use crate::boundary::VelocityBc;
 use crate::kinematics::Kinematics;
 use crate::solver::Solver;
+use ::materials::AnyModel;
 use check::Check;
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
@@ -81,6 +83,8 @@ pub enum Simulation {
 
 pub struct Scene {
     pub simulation: Simulation,
+    /// The material model of each body, in the order of the solver's blocks.
+    pub models: Vec<AnyModel>,
     pub end: f64,
     pub output: OutputSpec,
 }
@@ -194,16 +198,21 @@ pub fn from_description(spec: &SceneFile, file: &Path) -> Result<Scene, SceneErr
         }
     };
     let dir = file.parent().unwrap_or(Path::new("."));
+    let materials = materials::materials(spec, &check, dir)?;
     let simulation = match kinematics {
-        Kinematics::Solid => Simulation::Solid(build::<3>(spec, kinematics, &check, dir)?),
-        _ => Simulation::Planar(build::<2>(spec, kinematics, &check, dir)?),
+        Kinematics::Solid => Simulation::Solid(build::<3>(spec, kinematics, &check, &materials)?),
+        _ => Simulation::Planar(build::<2>(spec, kinematics, &check, &materials)?),
     };
+    let models = (spec.bodies.iter())
+        .map(|b| materials[b.material.as_str()])
+        .collect();
     let end = check.positive("time.end", spec.time.end)?;
     if spec.output.history_every == 0 {
         return Err(check.err("output.history_every", "must be at least 1"));
     }
     Ok(Scene {
         simulation,
+        models,
         end,
         output: spec.output.clone(),
     })
@@ -213,15 +222,14 @@ fn build<const D: usize>(
     spec: &SceneFile,
     kinematics: Kinematics,
     check: &Check,
-    dir: &Path,
+    materials: &HashMap<&str, AnyModel>,
 ) -> Result<Solver<D>, SceneError> {
     let mut solver = Solver::new(settings::settings::<D>(spec, kinematics, check)?);
     if kinematics == Kinematics::Axisymmetric {
         // stated, not silent: the run log lists it with the other conditions
         solver.velocity_bcs.push(VelocityBc::axis());
     }
-    let materials = materials::materials(spec, check, dir)?;
-    bodies::add_bodies(&mut solver, spec, check, &materials)?;
+    bodies::add_bodies(&mut solver, spec, check, materials)?;
     rigid::add_rigid_bodies(&mut solver, spec, check)?;
     conditions::add_velocity_bcs(&mut solver, spec, check)?;
     conditions::add_springs_and_tractions(&mut solver, spec, check)?;
@@ -287,6 +295,64 @@ mod tests {
                 "../materials/",
                 &format!("{}/", scenes().join("../materials").display()),
             )
+    }
+
+    /// `output.derivatives` writes the control point's sensitivity p ∂x/∂p: the shipped
+    /// Taylor bar to 10 µs (the elastic precursor, whose height A sets, has reached the
+    /// top), against central differences of plain runs with A set in the solver, the
+    /// closer of h/p = 1e-6 and 1e-8 (as in `tests/tangent.rs`).
+    #[test]
+    fn derivatives_of_a_scene_go_to_their_file() {
+        let dir =
+            std::env::temp_dir().join(format!("mpw_scene_derivatives-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("taylor.toml");
+        let text = axisymmetric_taylor_text()
+            .replace("end = 80e-6", "end = 10e-6")
+            .replace(
+                "history_every = 20",
+                "history_every = 20\nderivatives = [\"A\"]",
+            );
+        std::fs::write(&path, &text).unwrap();
+        let scene = load(&path).unwrap();
+        let a = ::materials::Model::param(&scene.models[0], "A").unwrap();
+        crate::run::run_scene(
+            scene,
+            &dir,
+            |_| {},
+            |_, _| std::ops::ControlFlow::Continue(()),
+        )
+        .unwrap();
+        let table = std::fs::read_to_string(dir.join("derivatives.csv")).unwrap();
+        let header: Vec<&str> = table.lines().next().unwrap().split(',').collect();
+        assert_eq!(header, ["time_s", "top_x_A_m", "top_y_A_m"]);
+        let last: Vec<f64> = (table.lines().last().unwrap().split(','))
+            .map(|v| v.parse().unwrap())
+            .collect();
+        let top_y = |a_value: f64| {
+            let scene = load(&path).unwrap();
+            let model = ::materials::Model::map_params(&scene.models[0], |n, v| {
+                if n == "A" {
+                    a_value
+                } else {
+                    v
+                }
+            });
+            let Simulation::Planar(mut s) = scene.simulation else {
+                panic!("a planar scene")
+            };
+            s.set_material(0, std::sync::Arc::new(model));
+            s.initialize();
+            // to the last row written (a row every history_every steps, as history.csv)
+            while s.time < last[0] - 0.5 * s.dt {
+                s.step().unwrap();
+            }
+            s.particles.position[s.control_points[0].1][1]
+        };
+        let central = |rel: f64| (top_y(a * (1.0 + rel)) - top_y(a * (1.0 - rel))) / (2.0 * rel);
+        let error = [1e-6, 1e-8].map(|rel| (central(rel) / last[2] - 1.0).abs());
+        assert!(last[2].abs() > 1e-7, "the top has felt A: {} m", last[2]);
+        assert!(error[0].min(error[1]) < 1e-4, "{last:?} against {error:?}");
     }
 
     /// Springs of a scene file are registered as point conditions and named in the run

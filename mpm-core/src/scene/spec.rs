@@ -236,6 +236,10 @@ pub struct OutputSpec {
     pub history_every: usize,
     #[serde(default = "ten")]
     pub snapshots: usize,
+    /// Material parameters to carry exact derivatives along (`solver::Tangent`): the
+    /// control points' sensitivities go to `derivatives.csv`. Empty: none.
+    #[serde(default)]
+    pub derivatives: Vec<String>,
 }
 
 fn one() -> usize {
@@ -250,6 +254,7 @@ impl Default for OutputSpec {
         OutputSpec {
             history_every: 1,
             snapshots: 10,
+            derivatives: Vec::new(),
         }
     }
 }

@@ -322,9 +322,19 @@ impl<const D: usize> Solver<D> {
         t_end: f64,
         observers: &mut [&mut dyn Observer<D>],
     ) -> Result<ControlFlow<()>, RunError> {
+        self.run_until_by(t_end, observers, |s| Ok(s.step()?))
+    }
+
+    /// `run_until`, each step taken by `step` (e.g. `step_with` a derivative pass).
+    pub fn run_until_by(
+        &mut self,
+        t_end: f64,
+        observers: &mut [&mut dyn Observer<D>],
+        mut step: impl FnMut(&mut Self) -> Result<(), RunError>,
+    ) -> Result<ControlFlow<()>, RunError> {
         crate::parallel::with_warm_pool(|| {
             while self.time < t_end - 0.5 * self.dt {
-                self.step()?;
+                step(self)?;
                 if observe_all(observers, self)?.is_break() {
                     return Ok(ControlFlow::Break(()));
                 }

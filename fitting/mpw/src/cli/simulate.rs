@@ -32,6 +32,12 @@ pub struct Args {
     /// doubled, and report how far the transmitter-face force moves.
     #[arg(long)]
     pub sensitivity: bool,
+    /// MPM scenes: carry exact derivatives along these material parameters (e.g.
+    /// A,B,N,C,M; at most 6, instead of the scene's `output.derivatives`) and write the
+    /// control points' sensitivities p ∂x/∂p to derivatives.csv and derivatives.png.
+    /// Needs linear shape functions and no rigid bodies or springs.
+    #[arg(long, value_delimiter = ',')]
+    pub derivatives: Vec<String>,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -48,10 +54,16 @@ pub fn run(args: Args) -> Result<()> {
             false => super::simulate_shpb::refine(&args.scene, params, &args.refine, &out),
         };
     }
+    if !args.derivatives.is_empty() && fitting::shpb_model::scene::is_shpb_scene(&args.scene) {
+        anyhow::bail!("--derivatives is for MPM scenes; the SHPB model does not carry derivatives yet (its bars and contact)");
+    }
     if args.params.is_some() || !args.refine.is_empty() || args.sensitivity {
         anyhow::bail!("--params, --refine and --sensitivity are for SHPB scenes (kind = \"shpb\"); {} is an MPM scene with its materials inside", args.scene.display());
     }
-    let scene = mpm_core::scene::load(&args.scene)?;
+    let mut scene = mpm_core::scene::load(&args.scene)?;
+    if !args.derivatives.is_empty() {
+        scene.output.derivatives = args.derivatives;
+    }
     run_loaded(scene, &out, &name)
 }
 
@@ -73,6 +85,11 @@ pub fn run_loaded(scene: mpm_core::scene::Scene, out: &Path, name: &str) -> Resu
         println!("  {:<28} {:>14.6e} {}", r.name, r.value, r.unit);
     }
     energy_chart(&out.join("history.csv"), &out.join("energy.png"), name)?;
+    let derivatives = out.join("derivatives.csv");
+    if derivatives.exists() {
+        derivative_chart(&derivatives, &out.join("derivatives.png"), name)?;
+        println!("exact derivatives: derivatives.csv and derivatives.png");
+    }
     for m in &summary.melting {
         eprintln!("warning: {m}");
     }
@@ -115,6 +132,36 @@ pub fn run_with_progress(
     .with_context(|| format!("writing output to {}", out.display()))?;
     bar.finish();
     Ok(summary)
+}
+
+/// Chart the sensitivities p ∂x/∂p of every control point along its last axis (the axial
+/// or vertical one) from a derivatives file, one series per point and parameter.
+pub fn derivative_chart(derivatives: &Path, png: &Path, title: &str) -> Result<()> {
+    let mut reader = csv::Reader::from_path(derivatives)?;
+    let header: Vec<String> = reader.headers()?.iter().map(String::from).collect();
+    let rows: Vec<Vec<f64>> = reader
+        .records()
+        .map(|r| Ok(r?.iter().map(|v| v.parse().unwrap_or(f64::NAN)).collect()))
+        .collect::<Result<_>>()?;
+    let last_axis = if header.iter().any(|h| h.contains("_z_")) {
+        "_z_"
+    } else {
+        "_y_"
+    };
+    let mut chart = LineChart::new(
+        format!("{title}: sensitivity of the control points (exact derivatives)"),
+        "t [µs]",
+        "p ∂x/∂p along the last axis [mm]",
+    );
+    for (c, name) in header.iter().enumerate().skip(1) {
+        if let Some((point, parameter)) = name.trim_end_matches("_m").split_once(last_axis) {
+            chart = chart.with(Series {
+                label: format!("{point} {parameter}"),
+                points: rows.iter().map(|r| (r[0] * 1e6, r[c] * 1e3)).collect(),
+            });
+        }
+    }
+    chart.write_png(png)
 }
 
 /// Chart kinetic, internal and total energy from a history file.

@@ -1,0 +1,126 @@
+//! A scene run with exact parameter derivatives (`solver::Tangent`, scene key
+//! `output.derivatives`): each step carries the derivatives along, and every
+//! `history_every` steps the control points' sensitivities p ∂x/∂p [m] (the derivative
+//! times the parameter's value: how far a point moves per unit relative change of the
+//! parameter) go to `derivatives.csv`, one column per point, axis and parameter,
+//! `{point}_{axis}_{parameter}_m`. Up to `MAX_PARAMETERS` parameters, each a parameter of
+//! every body's model.
+
+use crate::output::AXES;
+use crate::solver::{RunError, Solver, Tangent, Unsupported};
+use materials::seeded::seeded;
+use materials::{AnyModel, Model};
+use std::fs::File;
+use std::io::{self, BufWriter, Write};
+use std::path::Path;
+
+/// Most parameters a run carries derivatives along.
+pub const MAX_PARAMETERS: usize = 6;
+
+/// How a run takes its steps.
+pub type Stepper<'a, const D: usize> = Box<dyn FnMut(&mut Solver<D>) -> Result<(), RunError> + 'a>;
+
+/// Why a run cannot write derivatives.
+#[derive(Debug, thiserror::Error)]
+pub enum DerivativeError {
+    #[error(transparent)]
+    Unsupported(#[from] Unsupported),
+    #[error("exact derivatives: {0}")]
+    Parameters(String),
+    #[error("writing derivatives.csv: {0}")]
+    Io(#[from] io::Error),
+}
+
+/// A stepper that carries the derivatives of `solver` (before its first step) along the
+/// parameters `free` of the bodies' `models` and writes them into `dir`/derivatives.csv
+/// every `every` steps (and at the start).
+pub fn stepper<'a, const D: usize>(
+    solver: &Solver<D>,
+    models: &[AnyModel],
+    free: &[String],
+    (dir, every): (&Path, usize),
+) -> Result<Stepper<'a, D>, DerivativeError> {
+    match free.len() {
+        1 => with::<D, 1>(solver, models, free, (dir, every)),
+        2 => with::<D, 2>(solver, models, free, (dir, every)),
+        3 => with::<D, 3>(solver, models, free, (dir, every)),
+        4 => with::<D, 4>(solver, models, free, (dir, every)),
+        5 => with::<D, 5>(solver, models, free, (dir, every)),
+        6 => with::<D, 6>(solver, models, free, (dir, every)),
+        n => Err(DerivativeError::Parameters(format!(
+            "output.derivatives names {n} parameters; give 1 to {MAX_PARAMETERS}"
+        ))),
+    }
+}
+
+fn with<'a, const D: usize, const P: usize>(
+    solver: &Solver<D>,
+    models: &[AnyModel],
+    free: &[String],
+    (dir, every): (&Path, usize),
+) -> Result<Stepper<'a, D>, DerivativeError> {
+    let names: [&str; P] = std::array::from_fn(|k| free[k].as_str());
+    let seeded = (models.iter().zip(&solver.blocks))
+        .map(|(m, b)| {
+            seeded(m, &names)
+                .map_err(|e| DerivativeError::Parameters(format!("body `{}`: {e}", b.name)))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let scales: Vec<f64> = names
+        .iter()
+        .map(|n| models[0].param(n).unwrap_or(f64::NAN))
+        .collect();
+    let mut tangent = Tangent::new(solver, seeded)?;
+    let mut writer = Writer::create(&dir.join("derivatives.csv"), solver, &names, scales)?;
+    writer.write(solver, &tangent)?;
+    Ok(Box::new(move |s: &mut Solver<D>| {
+        s.step_with(&mut tangent)?;
+        if s.step.is_multiple_of(every) {
+            writer.write(s, &tangent)?;
+        }
+        Ok(())
+    }))
+}
+
+/// Streams the rows of `derivatives.csv`, flushed every row.
+struct Writer {
+    out: BufWriter<File>,
+    /// The value of each parameter (of the first body's model) [its unit].
+    scales: Vec<f64>,
+}
+
+impl Writer {
+    fn create<const D: usize>(
+        path: &Path,
+        solver: &Solver<D>,
+        names: &[&str],
+        scales: Vec<f64>,
+    ) -> io::Result<Self> {
+        let mut out = BufWriter::new(File::create(path)?);
+        let mut cols = vec!["time_s".to_string()];
+        for (point, _) in &solver.control_points {
+            for axis in &AXES[..D] {
+                cols.extend(names.iter().map(|n| format!("{point}_{axis}_{n}_m")));
+            }
+        }
+        writeln!(out, "{}", cols.join(","))?;
+        Ok(Writer { out, scales })
+    }
+
+    fn write<const D: usize, const P: usize>(
+        &mut self,
+        solver: &Solver<D>,
+        tangent: &Tangent<D, P>,
+    ) -> io::Result<()> {
+        let mut row = vec![format!("{:e}", solver.time)];
+        for &(_, i) in &solver.control_points {
+            let x = tangent.position(solver, i);
+            for c in x.iter() {
+                let d = c.eps.0.unwrap_or_else(nalgebra::SVector::zeros);
+                row.extend((0..P).map(|k| format!("{:e}", d[k] * self.scales[k])));
+            }
+        }
+        writeln!(self.out, "{}", row.join(","))?;
+        self.out.flush()
+    }
+}
