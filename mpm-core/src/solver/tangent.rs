@@ -43,7 +43,9 @@ use rayon::prelude::*;
 #[error("exact derivatives: {0}")]
 pub struct Unsupported(pub String);
 
-/// The derivatives of a run's state along `P` parameter directions.
+/// The derivatives of a run's state along `P` parameter directions. Invariant: only the
+/// dual parts of the stored numbers are kept; a stage's derivative reads the real parts
+/// from the solver (`join`), so the pass never drifts from the run it differentiates.
 pub struct Tangent<const D: usize, const P: usize> {
     /// One seeded model per material block of the solver.
     models: Vec<Box<dyn SeededModel<P>>>,
