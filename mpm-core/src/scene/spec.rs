@@ -238,7 +238,7 @@ pub struct OutputSpec {
     pub snapshots: usize,
     /// Material parameters to carry exact derivatives along (`solver::Tangent`): the
     /// control points' sensitivities go to `derivatives.csv`. Empty: none.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub derivatives: Vec<String>,
 }
 
