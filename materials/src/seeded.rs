@@ -72,10 +72,24 @@ where
             names.join(", ")
         ));
     }
-    Ok(Box::new(model.map_params(
-        |name, v| match free.iter().position(|n| *n == name) {
+    Ok(seeded_where_present(model, free))
+}
+
+/// `model` with those parameters of `free` that it has seeded (`free[k]` in direction
+/// k), the others constant: a body of another material in the same run (a Neo-Hooke
+/// anvil under a Johnson-Cook bar) does not depend on the bar's parameters.
+pub fn seeded_where_present<M, const P: usize>(
+    model: &M,
+    free: &[&str; P],
+) -> Box<dyn SeededModel<P>>
+where
+    M: Model<f64>,
+    M::With<Dual<P>>: 'static,
+{
+    Box::new(
+        model.map_params(|name, v| match free.iter().position(|n| *n == name) {
             Some(k) => seed::<P>(v, k),
             None => c(v),
-        },
-    )))
+        }),
+    )
 }

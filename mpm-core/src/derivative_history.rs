@@ -4,11 +4,11 @@
 //! times the parameter's value: how far a point moves per unit relative change of the
 //! parameter) go to `derivatives.csv`, one column per point, axis and parameter,
 //! `{point}_{axis}_{parameter}_m`. Up to `MAX_PARAMETERS` parameters, each a parameter of
-//! every body's model.
+//! at least one body's model (the bodies without it do not depend on it).
 
 use crate::output::AXES;
 use crate::solver::{RunError, Solver, Tangent, Unsupported};
-use materials::seeded::seeded;
+use materials::seeded::seeded_where_present;
 use materials::{AnyModel, Model};
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
@@ -60,15 +60,25 @@ fn with<'a, const D: usize, const P: usize>(
     (dir, every): (&Path, usize),
 ) -> Result<Stepper<'a, D>, DerivativeError> {
     let names: [&str; P] = std::array::from_fn(|k| free[k].as_str());
-    let seeded = (models.iter().zip(&solver.blocks))
-        .map(|(m, b)| {
-            seeded(m, &names)
-                .map_err(|e| DerivativeError::Parameters(format!("body `{}`: {e}", b.name)))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let scales: Vec<f64> = names
+    // each parameter's value, from the first body whose model has it
+    let mut scales = Vec::with_capacity(P);
+    for name in names {
+        match models.iter().find_map(|m| m.param(name)) {
+            Some(value) => scales.push(value),
+            None => {
+                return Err(DerivativeError::Parameters(format!(
+                    "no body's model has a parameter `{name}` (the first has {})",
+                    models
+                        .first()
+                        .map(|m| m.param_names().join(", "))
+                        .unwrap_or_default()
+                )))
+            }
+        }
+    }
+    let seeded = models
         .iter()
-        .map(|n| models[0].param(n).unwrap_or(f64::NAN))
+        .map(|m| seeded_where_present(m, &names))
         .collect();
     let mut tangent = Tangent::new(solver, seeded)?;
     let mut writer = Writer::create(&dir.join("derivatives.csv"), solver, &names, scales)?;

@@ -227,6 +227,70 @@ fn solid_with_grid_shift_derivatives_match_central_differences() {
     }
 }
 
+/// Two materials: the bar of `bar` (plane strain, USF) lands on a soft Neo-Hooke block
+/// standing on the wall; the block does not depend on A (`seeded_where_present`), but
+/// its points move with the bar's: the top of the block against central differences.
+#[test]
+fn a_body_of_another_material_carries_the_derivatives_it_feels() {
+    use materials::seeded::seeded_where_present;
+    use materials::{AnyModel, NeoHooke};
+    let anvil = AnyModel::NeoHooke(NeoHooke::new(20e9, 0.3, 3000.0));
+    let build = |model: &ElastoPlastic| {
+        let mut s = bar(model, Kinematics::PlaneStrain, Scheme::Usf);
+        // the bar starts 2 mm up, the block fills the 2 mm below it
+        for x in &mut s.particles.position {
+            x[1] += 2e-3;
+        }
+        s.particles
+            .reference_position
+            .clone_from(&s.particles.position);
+        let h = 0.5e-3;
+        let points = fill(
+            &Geometry::Box {
+                min: Vector2::zeros(),
+                max: Vector2::new(2e-3, 2e-3),
+            },
+            Vector2::repeat(h / 2.0),
+            Kinematics::PlaneStrain,
+        );
+        s.add_body("anvil", Arc::new(anvil), &points, Vector2::zeros());
+        s.initialize();
+        s
+    };
+    let model = copper();
+    let steps = 200;
+    let mut s = build(&model);
+    let top = s.blocks[1].range.clone().max_by(|&a, &b| {
+        let (x, y) = (&s.particles.position[a], &s.particles.position[b]);
+        (x[1] + x[0]).total_cmp(&(y[1] + y[0]))
+    });
+    let top = top.unwrap();
+    let free = ["A"];
+    let seeded = vec![
+        seeded(&model, &free).unwrap(),
+        seeded_where_present(&anvil, &free),
+    ];
+    let mut t = Tangent::new(&s, seeded).unwrap();
+    for _ in 0..steps {
+        s.step_with(&mut t).unwrap();
+    }
+    let exact = t.position(&s, top)[1].eps.0.unwrap()[0];
+    let a = model.param("A").unwrap();
+    let at = |v: f64| {
+        let mut r = build(&model.map_params(|n, x| if n == "A" { v } else { x }));
+        for _ in 0..steps {
+            r.step().unwrap();
+        }
+        r.particles.position[top][1]
+    };
+    let error = [1e-5, 1e-7].map(|rel| {
+        let h = rel * a;
+        ((at(a + h) - at(a - h)) / (2.0 * h) / exact - 1.0).abs()
+    });
+    assert!(exact.abs() * a > 1e-7, "the block feels A: {} m", exact * a);
+    assert!(error[0].min(error[1]) < 3e-5, "{exact:e}: {error:?}");
+}
+
 #[test]
 fn a_kernel_the_pass_does_not_carry_is_refused_with_the_reason() {
     let model = copper();
