@@ -13,6 +13,14 @@ pub fn seed<const N: usize>(v: f64, i: usize) -> DualSVec64<N> {
     DualSVec64::from_re(v).derivative(i)
 }
 
+/// Parameter `name` of value `v`: seeded in direction k if it is `free[k]`, else constant.
+pub fn seed_named<const N: usize>(free: &[&str; N], name: &str, v: f64) -> DualSVec64<N> {
+    match free.iter().position(|n| *n == name) {
+        Some(k) => seed(v, k),
+        None => c(v),
+    }
+}
+
 /// The derivative part of `x` as a vector (zero if it carries none).
 pub fn eps<const N: usize>(x: &DualSVec64<N>) -> SVector<f64, N> {
     x.eps.0.unwrap_or_else(SVector::zeros)
@@ -51,10 +59,7 @@ pub fn sensitivities<M: Model<f64>, const P: usize>(
     dt: f64,
     old: &State<f64>,
 ) -> Result<(M3<f64>, [M3<f64>; P]), MaterialError> {
-    let m = model.map_params(|name, v| match names.iter().position(|n| *n == name) {
-        Some(k) => seed::<P>(v, k),
-        None => c(v),
-    });
+    let m = model.map_params(|name, v| seed_named(names, name, v));
     let (sigma, _) = m.update(&f.map(c), dt, &old.map(c))?;
     let mut out = [M3::zeros(); P];
     for (k, ds) in out.iter_mut().enumerate() {

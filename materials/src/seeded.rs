@@ -4,10 +4,9 @@
 //! directions, given the dual parts of F and of the old state (forward mode; the return
 //! mapping differentiates by the implicit function theorem, module `plasticity`).
 
-use crate::ad::seed;
+use crate::ad::seed_named;
 use crate::error::MaterialError;
 use crate::material::{Model, State};
-use crate::scalar::c;
 use crate::tensor::M3;
 use num_dual::DualSVec64;
 
@@ -86,10 +85,5 @@ where
     M: Model<f64>,
     M::With<Dual<P>>: 'static,
 {
-    Box::new(
-        model.map_params(|name, v| match free.iter().position(|n| *n == name) {
-            Some(k) => seed::<P>(v, k),
-            None => c(v),
-        }),
-    )
+    Box::new(model.map_params(|name, v| seed_named(free, name, v)))
 }

@@ -8,6 +8,7 @@
 
 use crate::output::AXES;
 use crate::solver::{RunError, Solver, Tangent, Unsupported};
+use materials::ad::eps;
 use materials::seeded::seeded_where_present;
 use materials::{AnyModel, Model};
 use std::fs::File;
@@ -126,7 +127,7 @@ impl Writer {
         for &(_, i) in &solver.control_points {
             let x = tangent.position(solver, i);
             for c in x.iter() {
-                let d = c.eps.0.unwrap_or_else(nalgebra::SVector::zeros);
+                let d = eps(c);
                 row.extend((0..P).map(|k| format!("{:e}", d[k] * self.scales[k])));
             }
         }

@@ -104,10 +104,10 @@ struct Kinematic {
 }
 
 /// The earliest failing point of a piece (index in the model) and its cause.
-type Failure = Option<(usize, Box<Cause>)>;
+pub(super) type Failure = Option<(usize, Box<Cause>)>;
 
 /// The failure of the lower point index of `a` and `b`.
-fn earlier(a: Failure, b: Failure) -> Failure {
+pub(super) fn earlier(a: Failure, b: Failure) -> Failure {
     match (&a, &b) {
         (Some((i, _)), Some((j, _))) if j < i => b,
         _ => a.or(b),
@@ -253,8 +253,7 @@ impl<const D: usize> Solver<D> {
             } else {
                 parallel::light(p.len()).per_item()
             };
-            let material = block.material.clone();
-            let update = Deformation::of(&*material, &self.settings, grid.min_spacing(), dt);
+            let update = Deformation::of(&*block.material, &self.settings, grid.min_spacing(), dt);
             // a failure travels boxed: the per-piece Option stays one word wide instead of
             // a whole `Cause` copied through the reduction
             let pieces = (

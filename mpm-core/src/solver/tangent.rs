@@ -24,13 +24,14 @@
 //! other than linear (their weights depend on F through the domain), rigid bodies and bars
 //! (penalty contact), and point conditions (springs).
 
-use super::gather::{interpolate, Deformation};
+use super::gather::{earlier, interpolate, Deformation, Failure};
 use super::grid_solve::{NodalUpdate, NodeSolve};
 use super::scatter::{PointShare, Transfer};
 use super::{Solver, Stage};
 use crate::failure::{Cause, SimulationError};
 use crate::grid::{Grid, Node};
 use crate::shape::{corners, linear, ShapeFunction};
+use materials::ad::eps;
 use materials::scalar::c;
 use materials::seeded::{Dual, SeededModel};
 use materials::tensor::det;
@@ -141,7 +142,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                     block.name, rho.re, block.material.density(), modulus.re, block.material.p_wave_modulus()
                 ));
             }
-            let depends = |x: Dual<P>| x.eps.0.is_some_and(|e| e.iter().any(|d| *d != 0.0));
+            let depends = |x: Dual<P>| eps(&x).iter().any(|d| *d != 0.0);
             if depends(rho) || depends(modulus) {
                 return refuse(format!(
                     "a free parameter of body `{}` changes ρ0 or the wave speed, which set the masses and Δt; free only the flow-stress and thermal parameters",
@@ -312,61 +313,55 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             volume.par_iter_mut(),
             state.par_iter_mut(),
         );
-        let failure = points
-            .into_par_iter()
-            .enumerate()
-            .map(|(i, (v, vg, f, sigma, vol, st))| {
-                let x = join_all(&s.particles.position[i], &position[i]);
-                let (node, n, grad) = weights(&s.grid, &x);
-                let reach = corners(D);
-                let (v_grid, a, l) =
-                    interpolate(nodes, (&node[..reach], &n[..reach], &grad[..reach]));
-                if motion {
-                    *v = join_all(&s.particles.velocity[i], v) + a * dt;
-                    *vg = v_grid;
-                }
-                if !deformation {
-                    return None;
-                }
-                let b = s
-                    .blocks
-                    .iter()
-                    .position(|b| b.range.contains(&i))
-                    .expect("every point has a block");
-                let block = &s.blocks[b];
-                let (l3, f_new) = s.settings.kinematics.deformation(
-                    &l,
-                    &v_grid,
-                    (&x, &s.particles.reference_position[i]),
-                    &join_all(&s.particles.deformation[i], f),
-                    s.dt,
-                );
-                let old = join_state(&block.state[i - block.range.start], st);
-                let (sigma_new, state_new) = match models[b].update(&f_new, s.dt, &old) {
-                    Ok(new) => new,
-                    Err(e) => return Some((i, Cause::Material(e))),
-                };
-                let j = det(&f_new);
-                let d = (l3 + l3.transpose()) * c::<Dual<P>>(0.5);
-                *sigma = updates[b].with_viscosity(sigma_new, &d, j);
-                *vol = j * c::<Dual<P>>(s.particles.volume0[i]);
-                *f = f_new;
-                *st = state_new;
-                None
-            });
-        let earliest = failure.reduce(
-            || None,
-            |a, b| match (&a, &b) {
-                (Some((i, _)), Some((j, _))) if j < i => b,
-                _ => a.or(b),
-            },
-        );
-        match earliest {
+        let failure =
+            points
+                .into_par_iter()
+                .enumerate()
+                .map(|(i, (v, vg, f, sigma, vol, st))| -> Failure {
+                    let x = join_all(&s.particles.position[i], &position[i]);
+                    let (node, n, grad) = weights(&s.grid, &x);
+                    let reach = corners(D);
+                    let (v_grid, a, l) =
+                        interpolate(nodes, (&node[..reach], &n[..reach], &grad[..reach]));
+                    if motion {
+                        *v = join_all(&s.particles.velocity[i], v) + a * dt;
+                        *vg = v_grid;
+                    }
+                    if !deformation {
+                        return None;
+                    }
+                    let b = s
+                        .blocks
+                        .iter()
+                        .position(|b| b.range.contains(&i))
+                        .expect("every point has a block");
+                    let block = &s.blocks[b];
+                    let (l3, f_new) = s.settings.kinematics.deformation(
+                        &l,
+                        &v_grid,
+                        (&x, &s.particles.reference_position[i]),
+                        &join_all(&s.particles.deformation[i], f),
+                        s.dt,
+                    );
+                    let old = join_state(&block.state[i - block.range.start], st);
+                    let (sigma_new, state_new) = match models[b].update(&f_new, s.dt, &old) {
+                        Ok(new) => new,
+                        Err(e) => return Some((i, Box::new(Cause::Material(e)))),
+                    };
+                    let j = det(&f_new);
+                    let d = (l3 + l3.transpose()) * c::<Dual<P>>(0.5);
+                    *sigma = updates[b].with_viscosity(sigma_new, &d, j);
+                    *vol = j * c::<Dual<P>>(s.particles.volume0[i]);
+                    *f = f_new;
+                    *st = state_new;
+                    None
+                });
+        match failure.reduce(|| None, earlier) {
             Some((i, cause)) => Err(SimulationError {
                 step: s.step,
                 time: s.time,
                 particle: Some(i),
-                cause,
+                cause: *cause,
             }),
             None => Ok(()),
         }

@@ -71,6 +71,11 @@ pub fn run(args: Args) -> Result<()> {
 /// written): the run log, results, energy chart and warnings; a failure is returned as the
 /// error after everything is written, with the likely cause when the time step was risky.
 pub fn run_loaded(scene: mpm_core::scene::Scene, out: &Path, name: &str) -> Result<()> {
+    let derivatives = scene.output.derivatives.clone();
+    let last_axis = match scene.simulation {
+        mpm_core::scene::Simulation::Planar(_) => "y",
+        mpm_core::scene::Simulation::Solid(_) => "z",
+    };
     let summary = run_with_progress(scene, out)?;
     println!("{} particles, {}", summary.particles, summary.time_step);
     for change in &summary.time_step_changes {
@@ -85,9 +90,14 @@ pub fn run_loaded(scene: mpm_core::scene::Scene, out: &Path, name: &str) -> Resu
         println!("  {:<28} {:>14.6e} {}", r.name, r.value, r.unit);
     }
     energy_chart(&out.join("history.csv"), &out.join("energy.png"), name)?;
-    let derivatives = out.join("derivatives.csv");
-    if derivatives.exists() {
-        derivative_chart(&derivatives, &out.join("derivatives.png"), name)?;
+    if !derivatives.is_empty() {
+        let columns = (last_axis, derivatives.as_slice());
+        derivative_chart(
+            &out.join("derivatives.csv"),
+            columns,
+            &out.join("derivatives.png"),
+            name,
+        )?;
         println!("exact derivatives: derivatives.csv and derivatives.png");
     }
     for m in &summary.melting {
@@ -134,29 +144,34 @@ pub fn run_with_progress(
     Ok(summary)
 }
 
-/// Chart the sensitivities p ∂x/∂p of every control point along its last axis (the axial
-/// or vertical one) from a derivatives file, one series per point and parameter.
-pub fn derivative_chart(derivatives: &Path, png: &Path, title: &str) -> Result<()> {
+/// Chart the sensitivities p ∂x/∂p of every control point along its last axis `axis`
+/// (the axial or vertical one) to each of `parameters` from a derivatives file (columns
+/// `{point}_{axis}_{parameter}_m`), one series per point and parameter.
+pub fn derivative_chart(
+    derivatives: &Path,
+    (axis, parameters): (&str, &[String]),
+    png: &Path,
+    title: &str,
+) -> Result<()> {
     let mut reader = csv::Reader::from_path(derivatives)?;
     let header: Vec<String> = reader.headers()?.iter().map(String::from).collect();
     let rows: Vec<Vec<f64>> = reader
         .records()
         .map(|r| Ok(r?.iter().map(|v| v.parse().unwrap_or(f64::NAN)).collect()))
         .collect::<Result<_>>()?;
-    let last_axis = if header.iter().any(|h| h.contains("_z_")) {
-        "_z_"
-    } else {
-        "_y_"
-    };
     let mut chart = LineChart::new(
         format!("{title}: sensitivity of the control points (exact derivatives)"),
         "t [µs]",
-        "p ∂x/∂p along the last axis [mm]",
+        format!("p ∂{axis}/∂p [mm]"),
     );
     for (c, name) in header.iter().enumerate().skip(1) {
-        if let Some((point, parameter)) = name.trim_end_matches("_m").split_once(last_axis) {
+        let point = parameters.iter().find_map(|p| {
+            let point = name.strip_suffix(&format!("_{axis}_{p}_m"))?;
+            Some(format!("{point} {p}"))
+        });
+        if let Some(label) = point {
             chart = chart.with(Series {
-                label: format!("{point} {parameter}"),
+                label,
                 points: rows.iter().map(|r| (r[0] * 1e6, r[c] * 1e3)).collect(),
             });
         }

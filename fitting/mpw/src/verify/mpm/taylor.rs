@@ -265,7 +265,7 @@ pub fn measure<T: Scalar, const D: usize>(
 }
 
 /// `measure` of the run's own state.
-fn measure_real<const D: usize>(
+pub fn measure_real<const D: usize>(
     solver: &Solver<D>,
     marked: (usize, &[usize]),
     s: f64,
