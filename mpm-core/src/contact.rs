@@ -13,34 +13,57 @@
 
 use crate::bar::ContactSprings;
 use crate::rigid::{Pose, RigidBody};
+use materials::scalar::c;
+use materials::Scalar;
 use nalgebra::{Matrix3, SVector};
 
 /// Algorithm 13 (body frame): penalty force on a point at `x_mp` whose closest surface
-/// point is `x_c`, updating the attachment point `x_a` [N].
+/// point is `x_c`, updating the attachment point `x_a` [N]. Real, or with derivatives:
+/// the branches (stick or slip) follow the real parts.
 #[inline]
-pub fn penalty_force<const D: usize>(
-    x_mp: &SVector<f64, D>,
-    x_c: &SVector<f64, D>,
-    x_a: &mut SVector<f64, D>,
+pub fn penalty_force<T: Scalar, const D: usize>(
+    x_mp: &SVector<T, D>,
+    x_c: &SVector<T, D>,
+    x_a: &mut SVector<T, D>,
     kappa: f64,
     mu: f64,
-) -> SVector<f64, D> {
-    let trial = (*x_a - x_mp) * kappa;
-    let slip = *x_a - x_c;
+) -> SVector<T, D> {
+    let (kappa, mu_t) = (c::<T>(kappa), c::<T>(mu));
+    if mu == 0.0 {
+        // frictionless: the attachment is the projection itself, whatever the slip
+        *x_a = x_c.clone();
+        return (x_c - x_mp) * kappa;
+    }
+    let trial = (x_a.clone() - x_mp) * kappa.clone();
+    let slip = x_a.clone() - x_c;
     let depth = x_c - x_mp;
-    if slip.norm() <= 1e-12 * depth.norm().max(f64::MIN_POSITIVE) || depth.norm() == 0.0 {
+    let (slip_norm, depth_norm) = (norm_re(&slip), norm_re(&depth));
+    if slip_norm <= 1e-12 * depth_norm.max(f64::MIN_POSITIVE) || depth_norm == 0.0 {
         return trial;
     }
-    let n = depth.normalize();
-    let t = slip.normalize();
-    if trial.dot(&t) > mu * trial.dot(&n) {
-        let m = t - n * mu;
-        let xi = -(*x_a - x_mp).dot(&m) / (x_c - *x_a).dot(&m);
-        *x_a += (x_c - *x_a) * xi;
-        (*x_a - x_mp) * kappa
+    let n = unit(depth);
+    let t = unit(slip);
+    if trial.dot(&t).re() > mu * trial.dot(&n).re() {
+        let m = t - n * mu_t;
+        let xi = -(x_a.clone() - x_mp).dot(&m) / (x_c - x_a.clone()).dot(&m);
+        *x_a += (x_c - x_a.clone()) * xi;
+        (x_a.clone() - x_mp) * kappa
     } else {
         trial
     }
+}
+
+/// Euclidean norm of the real parts of `v`.
+#[inline]
+fn norm_re<T: Scalar, const D: usize>(v: &SVector<T, D>) -> f64 {
+    v.map(|x| x.re()).norm()
+}
+
+/// `v` / |v| (real, or with derivatives).
+#[inline]
+fn unit<T: Scalar, const D: usize>(v: SVector<T, D>) -> SVector<T, D> {
+    let length = v.dot(&v).sqrt();
+    v / length
 }
 
 /// Contact bookkeeping of one rigid body.
@@ -90,62 +113,66 @@ impl<const D: usize> ContactState<D> {
 }
 
 /// A candidate point: its centre x [m], mass [kg], deformation gradient F and reference
-/// domain half-widths a [m].
+/// domain half-widths a [m]; x and F real, or with derivatives.
 #[derive(Clone, Copy)]
-pub struct Candidate<'a, const D: usize> {
-    pub x: &'a SVector<f64, D>,
+pub struct Candidate<'a, T: Scalar, const D: usize> {
+    pub x: &'a SVector<T, D>,
     pub mass: f64,
-    pub f: &'a Matrix3<f64>,
+    pub f: &'a Matrix3<T>,
     pub half_size: &'a SVector<f64, D>,
 }
 
-impl<const D: usize> Candidate<'_, D> {
+impl<T: Scalar, const D: usize> Candidate<'_, T, D> {
     /// How far the point's current domain F·box(a) reaches from its centre along the unit
     /// vector `n`: Σ_i a_i |(Fᵀ n)_i| (the support function of the parallelogram or
     /// parallelepiped; 0 for a point without a domain).
     #[inline]
-    pub fn reach(&self, n: &SVector<f64, D>) -> f64 {
-        (0..D)
-            .map(|i| self.half_size[i] * (0..D).map(|j| self.f[(j, i)] * n[j]).sum::<f64>().abs())
-            .sum()
+    pub fn reach(&self, n: &SVector<f64, D>) -> T {
+        let mut reach = c::<T>(0.0);
+        for i in 0..D {
+            let along = (0..D).fold(c::<T>(0.0), |s, j| s + self.f[(j, i)].clone() * n[j]);
+            let along = if along.re() < 0.0 { -along } else { along };
+            reach += along * self.half_size[i];
+        }
+        reach
     }
 }
 
 /// A contact force on a point [N] and where it acts, the nearest point of the point's
 /// domain [m] (both world frame).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ContactForce<const D: usize> {
-    pub force: SVector<f64, D>,
-    pub at: SVector<f64, D>,
+pub struct ContactForce<T: Scalar, const D: usize> {
+    pub force: SVector<T, D>,
+    pub at: SVector<T, D>,
 }
 
 /// Exact check and penalty force for one candidate: returns the force on the particle
 /// and where it acts (world frame), updating or clearing its attachment. The surface acts
 /// on the nearest point of the candidate's domain, x − reach(n) n (the centre when it has
-/// no domain).
+/// no domain). Whether the point touches follows the real parts.
 #[inline]
-pub fn candidate_force<const D: usize>(
+pub fn candidate_force<T: Scalar, const D: usize>(
     body: &RigidBody<D>,
     pose: &Pose<D>,
-    point: Candidate<'_, D>,
-    attachment: &mut Option<SVector<f64, D>>,
-) -> Option<ContactForce<D>> {
+    point: Candidate<'_, T, D>,
+    attachment: &mut Option<SVector<T, D>>,
+) -> Option<ContactForce<T, D>> {
     let mut xb = pose.to_body(point.x);
     let (mut d, mut plane) = body.nearest_plane(&xb);
     let reach = point.reach(&(pose.rotation * plane.normal));
-    if reach > 0.0 {
-        xb -= plane.normal * reach;
+    if reach.re() > 0.0 {
+        xb -= plane.normal.map(c::<T>) * reach;
         (d, plane) = body.nearest_plane(&xb);
     }
-    if d >= 0.0 {
+    if d.re() >= 0.0 {
         *attachment = None;
         return None;
     }
-    let xc = xb - plane.normal * d;
-    let xa = attachment.get_or_insert(xc);
+    let xc = xb.clone() - plane.normal.map(c::<T>) * d;
+    let xa = attachment.get_or_insert_with(|| xc.clone());
     let f = penalty_force(&xb, &xc, xa, body.penalty_of(point.mass), body.friction);
     Some(ContactForce {
-        force: pose.rotation * f,
+        force: pose.rotation.map(c::<T>) * f,
         at: pose.to_world(&xb),
     })
 }

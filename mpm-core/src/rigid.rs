@@ -11,7 +11,9 @@
 //! distance d: X_C = X − d n.
 
 use crate::bar::BarEnd;
+use materials::scalar::c;
 use materials::signal::TimeSignal;
+use materials::Scalar;
 use nalgebra::{Rotation3, SMatrix, SVector, Unit, Vector3};
 
 /// A bounding plane: a point on it and its outward unit normal.
@@ -47,11 +49,18 @@ pub struct Pose<const D: usize> {
 }
 
 impl<const D: usize> Pose<D> {
-    pub fn to_world(&self, x_body: &SVector<f64, D>) -> SVector<f64, D> {
-        self.center + self.translation + self.rotation * (x_body - self.center)
+    /// World position of the body point `x_body` (real, or with derivatives).
+    pub fn to_world<T: Scalar>(&self, x_body: &SVector<T, D>) -> SVector<T, D> {
+        let center = self.center.map(c::<T>);
+        center.clone()
+            + self.translation.map(c::<T>)
+            + self.rotation.map(c::<T>) * (x_body - center)
     }
-    pub fn to_body(&self, x: &SVector<f64, D>) -> SVector<f64, D> {
-        self.center + self.rotation.transpose() * (x - self.center - self.translation)
+    /// Body-frame position of the world point `x` (real, or with derivatives).
+    pub fn to_body<T: Scalar>(&self, x: &SVector<T, D>) -> SVector<T, D> {
+        let center = self.center.map(c::<T>);
+        center.clone()
+            + self.rotation.transpose().map(c::<T>) * (x - center - self.translation.map(c::<T>))
     }
 }
 
@@ -173,11 +182,11 @@ impl<const D: usize> RigidBody<D> {
     /// Signed distance to the nearest bounding plane and that plane (body frame): the
     /// point is inside if the distance is negative.
     #[inline]
-    pub fn nearest_plane(&self, x_body: &SVector<f64, D>) -> (f64, &Plane<D>) {
-        let mut best = (f64::NEG_INFINITY, &self.planes[0]);
+    pub fn nearest_plane<T: Scalar>(&self, x_body: &SVector<T, D>) -> (T, &Plane<D>) {
+        let mut best = (c::<T>(f64::NEG_INFINITY), &self.planes[0]);
         for p in &self.planes {
-            let d = p.normal.dot(&(x_body - p.point));
-            if d > best.0 {
+            let d = p.normal.map(c::<T>).dot(&(x_body - p.point.map(c::<T>)));
+            if d.re() > best.0.re() {
                 best = (d, p);
             }
         }

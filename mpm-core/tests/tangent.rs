@@ -1,20 +1,25 @@
 //! The derivative pass (`solver::Tangent`) against central differences of whole runs: a
 //! small Johnson-Cook copper bar hits a one-sided rigid wall (axisymmetric MUSL, plane
-//! strain USF and USL, with bulk viscosity), and the derivatives of a few observed
-//! quantities with respect to A, B, N, C and M are compared with
-//! (q(p + h) − q(p − h)) / 2h at two relative steps, h/p = 1e-5 and 1e-7, the ends of
-//! the range where truncation and round-off are both below the tolerance (the full step
-//! sweep is in `mpw verify`). The closer of the two counts: a branch event within ±h (a
-//! point crossing a cell face, a node passing the mass cutoff, first yield) makes the
-//! quotient average two one-sided slopes; in the USF run one sits 5e-7 p from A, and the
-//! quotient at 1e-5 is off by 1.8e-5 while the one at 1e-7 agrees to 1e-8.
+//! strain USF and USL, with bulk viscosity; linear, CPDI and cpGIMP shape functions) or
+//! a rigid half-space with penalty contact and friction, and the derivatives of a few
+//! observed quantities with respect to A, B, N, C and M are compared with
+//! (q(p + h) − q(p − h)) / 2h at three relative steps, h/p = 1e-5, 1e-6 and 1e-7, the
+//! range where truncation and round-off are both below the tolerance (the full step
+//! sweep is in `mpw verify`). The closest counts: a branch event within ±h (a point
+//! crossing a cell face, a node passing the mass cutoff, first yield, a contact point
+//! starting to slide) makes the quotient average two one-sided slopes; in the USF run one
+//! sits 5e-7 p from A, and the quotient at 1e-5 is off by 1.8e-5 while the one at 1e-7
+//! agrees to 1e-8; in the contact run one sits between 3e-6 and 1e-5 p above A, and σ_yy
+//! of the bottom point is off by 3e-4 at 1e-5, by 5e-6 at 1e-6 and, from round-off, by
+//! 5e-5 at 1e-7.
 
 use materials::seeded::seeded;
 use materials::{load_elasto_plastic, ElastoPlastic, Model};
 use mpm_core::discretize::{fill, Geometry};
 use mpm_core::kinematics::Kinematics;
+use mpm_core::shape::ShapeFunction;
 use mpm_core::solver::{Scheme, Settings, Solver, Tangent};
-use mpm_core::VelocityBc;
+use mpm_core::{RigidBody, VelocityBc};
 use nalgebra::Vector2;
 use std::sync::Arc;
 
@@ -28,11 +33,40 @@ fn copper() -> ElastoPlastic {
     .unwrap()
 }
 
-/// A 2 mm by 6 mm bar at 150 m/s onto the wall y = 0, 0.5 mm cells, 2×2 points per cell.
-fn bar(model: &ElastoPlastic, kinematics: Kinematics, scheme: Scheme) -> Solver<2> {
+/// What the bar lands on: a one-sided wall (a velocity condition on the grid) or a rigid
+/// half-space with penalty contact and Coulomb friction μ.
+#[derive(Debug, Clone, Copy)]
+enum Floor {
+    Wall,
+    Rigid { friction: f64 },
+}
+
+/// How a check runs: kinematics, scheme, shape functions and floor.
+#[derive(Debug, Clone, Copy)]
+struct Case {
+    kinematics: Kinematics,
+    scheme: Scheme,
+    kernel: ShapeFunction,
+    floor: Floor,
+}
+
+impl Case {
+    fn new(kinematics: Kinematics, scheme: Scheme) -> Case {
+        Case {
+            kinematics,
+            scheme,
+            kernel: ShapeFunction::Linear,
+            floor: Floor::Wall,
+        }
+    }
+}
+
+/// A 2 mm by 6 mm bar at 150 m/s onto the floor y = 0, 0.5 mm cells, 2×2 points per cell.
+fn bar(model: &ElastoPlastic, case: Case) -> Solver<2> {
     let h = 0.5e-3;
-    let mut settings = Settings::<2>::new(kinematics, h);
-    settings.scheme = scheme;
+    let mut settings = Settings::<2>::new(case.kinematics, h);
+    settings.scheme = case.scheme;
+    settings.shape_function = case.kernel;
     let mut s = Solver::new(settings);
     let points = fill(
         &Geometry::Box {
@@ -40,10 +74,26 @@ fn bar(model: &ElastoPlastic, kinematics: Kinematics, scheme: Scheme) -> Solver<
             max: Vector2::new(2e-3, 6e-3),
         },
         Vector2::repeat(h / 2.0),
-        kinematics,
+        case.kinematics,
     );
-    s.add_body("bar", Arc::new(*model), &points, Vector2::new(0.0, -150.0));
-    s.velocity_bcs.push(VelocityBc::wall(1, 0.0, true));
+    let block = s.add_body("bar", Arc::new(*model), &points, Vector2::new(0.0, -150.0));
+    s.set_half_size(block, Vector2::repeat(h / 4.0));
+    match case.floor {
+        Floor::Wall => s.velocity_bcs.push(VelocityBc::wall(1, 0.0, true)),
+        Floor::Rigid { friction } => {
+            // κ = ω² m with ω = c / s, as stiff as a layer of points (c ≈ 4.7 km/s)
+            let omega = 4.7e3 / (h / 2.0);
+            let mut floor = RigidBody::half_space(
+                "floor",
+                Vector2::zeros(),
+                Vector2::new(0.0, 1.0),
+                omega * omega,
+                friction,
+            );
+            floor.penalty_per_mass = true;
+            s.add_rigid_body(floor);
+        }
+    }
     s.initialize();
     s
 }
@@ -76,23 +126,23 @@ fn corners(s: &Solver<2>) -> (usize, usize) {
     )
 }
 
-fn run(model: &ElastoPlastic, kinematics: Kinematics, scheme: Scheme, steps: usize) -> [f64; 5] {
-    let mut s = bar(model, kinematics, scheme);
+fn run(model: &ElastoPlastic, case: Case, steps: usize) -> [f64; 5] {
+    let mut s = bar(model, case);
     for _ in 0..steps {
         s.step().unwrap();
     }
     observe(&s)
 }
 
-fn check(kinematics: Kinematics, scheme: Scheme, steps: usize) {
+fn check(case: Case, steps: usize) {
     let model = copper();
-    let mut s = bar(&model, kinematics, scheme);
+    let mut s = bar(&model, case);
     let (top, bottom) = corners(&s);
     let mut t = Tangent::new(&s, vec![seeded(&model, &FREE).unwrap()]).unwrap();
     for _ in 0..steps {
         s.step_with(&mut t).unwrap();
     }
-    let plain = run(&model, kinematics, scheme, steps);
+    let plain = run(&model, case, steps);
     assert_eq!(observe(&s), plain, "the pass changed the run");
     let x_top = t.position(&s, top);
     let x_bottom = t.position(&s, bottom);
@@ -109,13 +159,13 @@ fn check(kinematics: Kinematics, scheme: Scheme, steps: usize) {
         let p = model.param(name).unwrap();
         let at = |v: f64| {
             let m = model.map_params(|n, x| if n == *name { v } else { x });
-            run(&m, kinematics, scheme, steps)
+            run(&m, case, steps)
         };
         let central = |h: f64| {
             let (up, down) = (at(p + h), at(p - h));
             std::array::from_fn::<f64, 5, _>(|q| (up[q] - down[q]) / (2.0 * h))
         };
-        let steps_fd = [central(1e-5 * p), central(1e-7 * p)];
+        let steps_fd = [central(1e-5 * p), central(1e-6 * p), central(1e-7 * p)];
         for (q, e) in exact.iter().enumerate() {
             let d = e.eps.0.unwrap()[k];
             // scaled by the parameter and the quantity's largest scaled sensitivity
@@ -123,9 +173,9 @@ fn check(kinematics: Kinematics, scheme: Scheme, steps: usize) {
                 .map(|j| (e.eps.0.unwrap()[j] * model.param(FREE[j]).unwrap()).abs())
                 .fold(0.0, f64::max);
             let error = |fd: &[f64; 5]| (d - fd[q]).abs() * p / scale;
-            let error = error(&steps_fd[0]).min(error(&steps_fd[1]));
+            let error = steps_fd.iter().map(error).fold(f64::INFINITY, f64::min);
             eprintln!(
-                "{kinematics:?} {scheme} q{q} d/d{name}: exact {d:.6e} fd {:.6e} rel {error:.1e}",
+                "{case:?} q{q} d/d{name}: exact {d:.6e} fd {:.6e} rel {error:.1e}",
                 steps_fd[0][q]
             );
             // round-off amplified through 300 steps is ~1e-5 of the largest scaled
@@ -142,12 +192,12 @@ fn check(kinematics: Kinematics, scheme: Scheme, steps: usize) {
 
 #[test]
 fn axisymmetric_musl_derivatives_match_central_differences() {
-    check(Kinematics::Axisymmetric, Scheme::Musl, 300);
+    check(Case::new(Kinematics::Axisymmetric, Scheme::Musl), 300);
 }
 
 #[test]
 fn plane_strain_usf_derivatives_match_central_differences() {
-    check(Kinematics::PlaneStrain, Scheme::Usf, 300);
+    check(Case::new(Kinematics::PlaneStrain, Scheme::Usf), 300);
 }
 
 /// USL only while it is stable: this impact sets a free surface crossing node planes,
@@ -155,7 +205,39 @@ fn plane_strain_usf_derivatives_match_central_differences() {
 /// 47), the derivatives growing with the instability before it.
 #[test]
 fn plane_strain_usl_derivatives_match_central_differences() {
-    check(Kinematics::PlaneStrain, Scheme::Usl, 100);
+    check(Case::new(Kinematics::PlaneStrain, Scheme::Usl), 100);
+}
+
+/// CPDI: the weights move with the domain's vertices and change with F.
+#[test]
+fn axisymmetric_cpdi_derivatives_match_central_differences() {
+    let case = Case {
+        kernel: ShapeFunction::Cpdi,
+        ..Case::new(Kinematics::Axisymmetric, Scheme::Musl)
+    };
+    check(case, 300);
+}
+
+/// cpGIMP (the thesis's vertex form, the domain stretched by the diagonal of F).
+#[test]
+fn plane_strain_cpgimp_derivatives_match_central_differences() {
+    let case = Case {
+        kernel: ShapeFunction::CpGimp,
+        ..Case::new(Kinematics::PlaneStrain, Scheme::Usf)
+    };
+    check(case, 300);
+}
+
+/// CPDI onto a rigid half-space with penalty contact and friction μ = 0.2: the points
+/// of the bottom layer slide outwards, sticking near the axis.
+#[test]
+fn penalty_contact_with_friction_derivatives_match_central_differences() {
+    let case = Case {
+        kernel: ShapeFunction::Cpdi,
+        floor: Floor::Rigid { friction: 0.2 },
+        ..Case::new(Kinematics::Axisymmetric, Scheme::Musl)
+    };
+    check(case, 300);
 }
 
 /// 3D, a 1 mm × 1 mm × 3 mm JC copper block at 150 m/s onto the wall z = 0, tilted by
@@ -236,7 +318,7 @@ fn a_body_of_another_material_carries_the_derivatives_it_feels() {
     use materials::{AnyModel, NeoHooke};
     let anvil = AnyModel::NeoHooke(NeoHooke::new(20e9, 0.3, 3000.0));
     let build = |model: &ElastoPlastic| {
-        let mut s = bar(model, Kinematics::PlaneStrain, Scheme::Usf);
+        let mut s = bar(model, Case::new(Kinematics::PlaneStrain, Scheme::Usf));
         // the bar starts 2 mm up, the block fills the 2 mm below it
         for x in &mut s.particles.position {
             x[1] += 2e-3;
@@ -294,14 +376,16 @@ fn a_body_of_another_material_carries_the_derivatives_it_feels() {
 #[test]
 fn a_kernel_the_pass_does_not_carry_is_refused_with_the_reason() {
     let model = copper();
-    let mut s = bar(&model, Kinematics::PlaneStrain, Scheme::Musl);
-    s.blocks[0].shape_function = Some(mpm_core::shape::ShapeFunction::Cpdi);
-    let e = Tangent::new(&s, vec![seeded(&model, &FREE).unwrap()])
+    let case = Case {
+        kernel: ShapeFunction::UGimp,
+        ..Case::new(Kinematics::PlaneStrain, Scheme::Musl)
+    };
+    let e = Tangent::new(&bar(&model, case), vec![seeded(&model, &FREE).unwrap()])
         .err()
         .unwrap();
-    assert!(e.to_string().contains("cpdi"), "{e}");
+    assert!(e.to_string().contains("ugimp"), "{e}");
     let e = Tangent::new(
-        &bar(&model, Kinematics::PlaneStrain, Scheme::Musl),
+        &bar(&model, Case::new(Kinematics::PlaneStrain, Scheme::Musl)),
         vec![seeded(&model, &["E"]).unwrap()],
     )
     .err()

@@ -15,6 +15,9 @@
 //! The work of the loads is f · Σ_I w_I v_I Δt with the same weights w_I.
 
 use super::Solver;
+use crate::grid::Grid;
+use materials::scalar::c;
+use materials::Scalar;
 use nalgebra::SVector;
 
 /// One contact force at a surface point, and the nodes it was shared among this step.
@@ -41,24 +44,11 @@ impl<const D: usize> Solver<D> {
         for load in loads.iter_mut() {
             let start = shares.len();
             let stencil = weights.stencil(load.particle);
-            for &node in stencil.node {
-                let node = node as usize;
-                let n = &grid.nodes[node];
-                let hat = hat_at(&(load.at - grid.node_position(node)), &grid.inv_spacing);
-                if hat > 0.0 && n.mass > cutoff * n.heaviest {
-                    shares.push((node, hat));
-                }
-            }
-            if start == shares.len() {
-                // no node within a cell of x_c (a domain stretched far from its centre):
-                // shared by the point's own weights
-                let own = stencil.node.iter().zip(stencil.n);
-                shares.extend(own.map(|(&node, &n)| (node as usize, n)));
-            }
-            let total: f64 = shares[start..].iter().map(|(_, w)| w).sum();
-            for (node, w) in &mut shares[start..] {
-                *w /= total;
-                grid.nodes[*node].force += load.force * *w;
+            let own = stencil.node.iter().zip(stencil.n);
+            let own = own.map(|(&node, &n)| (node as usize, n));
+            load_shares(grid, cutoff, &load.at, own, shares);
+            for &(node, w) in &shares[start..] {
+                grid.nodes[node].force += load.force * w;
             }
             load.weights = start..shares.len();
         }
@@ -78,12 +68,50 @@ impl<const D: usize> Solver<D> {
     }
 }
 
+/// Append to `shares` the (node, w_I) of a load at `at` [m] (real, or with derivatives):
+/// the linear hats at `at` of the nodes of `own` (each node of the point's stencil once,
+/// with the point's own weight) that the grid solve accelerates, renormalised to sum to
+/// one; when none is within a cell of `at` (a domain stretched far from its centre), the
+/// point's own weights. Which nodes share follows the real parts.
+pub(super) fn load_shares<T: Scalar, const D: usize>(
+    grid: &Grid<D>,
+    cutoff: f64,
+    at: &SVector<T, D>,
+    own: impl Iterator<Item = (usize, T)> + Clone,
+    shares: &mut Vec<(usize, T)>,
+) {
+    let start = shares.len();
+    for (node, _) in own.clone() {
+        let n = &grid.nodes[node];
+        let offset = at - grid.node_position(node).map(c::<T>);
+        let hat = hat_at(&offset, &grid.inv_spacing);
+        if hat.re() > 0.0 && n.mass > cutoff * n.heaviest {
+            shares.push((node, hat));
+        }
+    }
+    if start == shares.len() {
+        shares.extend(own);
+    }
+    let total = shares[start..]
+        .iter()
+        .fold(c::<T>(0.0), |t, (_, w)| t + w.clone());
+    for (_, w) in &mut shares[start..] {
+        *w /= total.clone();
+    }
+}
+
 /// The linear hat of a node at offset `d` from it [m], Π_k max(0, 1 − |d_k| / h_k).
 #[inline]
-fn hat_at<const D: usize>(d: &SVector<f64, D>, inv_h: &SVector<f64, D>) -> f64 {
-    (0..D)
-        .map(|k| (1.0 - (d[k] * inv_h[k]).abs()).max(0.0))
-        .product()
+fn hat_at<T: Scalar, const D: usize>(d: &SVector<T, D>, inv_h: &SVector<f64, D>) -> T {
+    (0..D).fold(c::<T>(1.0), |hat, k| {
+        let u = d[k].clone() * inv_h[k];
+        let u = if u.re() < 0.0 { -u } else { u };
+        if u.re() >= 1.0 {
+            c::<T>(0.0)
+        } else {
+            hat * (c::<T>(1.0) - u)
+        }
+    })
 }
 
 #[cfg(test)]
@@ -94,7 +122,7 @@ mod tests {
     #[test]
     fn hat_is_one_at_the_node_and_zero_a_cell_away() {
         let inv_h = Vector2::new(2.0, 4.0);
-        assert_eq!(hat_at(&Vector2::zeros(), &inv_h), 1.0);
+        assert_eq!(hat_at(&Vector2::<f64>::zeros(), &inv_h), 1.0);
         assert!((hat_at(&Vector2::new(0.25, 0.125), &inv_h) - 0.25).abs() < 1e-15);
         assert_eq!(hat_at(&Vector2::new(0.5, 0.0), &inv_h), 0.0);
         assert_eq!(hat_at(&Vector2::new(0.0, -0.3), &inv_h), 0.0);

@@ -35,7 +35,8 @@ pub struct Args {
     /// MPM scenes: carry exact derivatives along these material parameters (e.g.
     /// A,B,N,C,M; at most 6, instead of the scene's `output.derivatives`) and write the
     /// control points' sensitivities p ∂x/∂p to derivatives.csv and derivatives.png.
-    /// Needs linear shape functions and no rigid bodies or springs.
+    /// Needs linear, CPDI or cpGIMP shape functions; rigid bodies of prescribed motion are
+    /// carried, faces on elastic bars and springs not yet.
     #[arg(long, value_delimiter = ',')]
     pub derivatives: Vec<String>,
 }

@@ -19,18 +19,22 @@
 //! theorem: one extra Newton step in dual arithmetic) and the transfers in P + 1 lanes.
 //! Memory: (P + 1) numbers for each real one of the state; no tape.
 //!
-//! Held fixed, and so refused as free parameters: anything that changes ρ0 (the masses) or
-//! the wave speed (Δt). Not carried yet, and refused with the reason: shape functions
-//! other than linear (their weights depend on F through the domain), rigid bodies and bars
-//! (penalty contact), and point conditions (springs).
+//! Carried: linear, CPDI and cpGIMP weights (module `stencil`), penalty contact with
+//! rigid bodies of prescribed motion (module `contact`). Held fixed, and so refused as
+//! free parameters: anything that changes ρ0 (the masses) or the wave speed (Δt). Not
+//! carried yet, and refused with the reason: the GIMP kernels and hexahedral CPDI, faces
+//! on elastic bars, and point conditions (springs).
+
+mod contact;
+mod stencil;
 
 use super::gather::{earlier, interpolate, Deformation, Failure};
 use super::grid_solve::{NodalUpdate, NodeSolve};
 use super::scatter::{PointShare, Transfer};
 use super::{Solver, Stage};
 use crate::failure::{Cause, SimulationError};
-use crate::grid::{Grid, Node};
-use crate::shape::{corners, linear, ShapeFunction};
+use crate::grid::Node;
+use contact::DualLoad;
 use materials::ad::eps;
 use materials::scalar::c;
 use materials::seeded::{Dual, SeededModel};
@@ -38,6 +42,7 @@ use materials::tensor::det;
 use materials::State;
 use nalgebra::{Matrix3, SMatrix, SVector};
 use rayon::prelude::*;
+use stencil::{DualStencils, SmoothKernel};
 
 /// Why a run cannot carry exact derivatives (yet).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -59,6 +64,17 @@ pub struct Tangent<const D: usize, const P: usize> {
     /// History of every point (by point index; a block's points are contiguous).
     state: Vec<State<Dual<P>>>,
     nodes: Vec<Node<D, Dual<P>>>,
+    /// Each block's kernel.
+    kernels: Vec<SmoothKernel>,
+    /// The weights of this step, evaluated by its first transfer.
+    stencils: DualStencils<D, P>,
+    /// Attachment point of each point in contact with each rigid body (by body, then
+    /// point index; body frame).
+    attachment: Vec<Vec<Option<SVector<Dual<P>, D>>>>,
+    /// The contact loads of this step.
+    loads: Vec<DualLoad<D, P>>,
+    /// Each rigid body's total contact force of this step.
+    contact_force: Vec<SVector<Dual<P>, D>>,
 }
 
 /// `re` with the derivatives of `d`.
@@ -86,25 +102,6 @@ fn join_state<const P: usize>(re: &State<f64>, d: &State<Dual<P>>) -> State<Dual
     }
 }
 
-/// Linear weights of a point at `x` with its derivatives: the nodes of its cell, N and
-/// ∇N (dual parts ∇N·dx and (∂²N/∂x²) dx).
-#[inline]
-fn weights<const D: usize, const P: usize>(
-    grid: &Grid<D>,
-    x: &SVector<Dual<P>, D>,
-) -> ([u32; 8], [Dual<P>; 8], [SVector<Dual<P>, D>; 8]) {
-    let (base, xi) = grid.locate(&x.map(|x| x.re));
-    let xi =
-        SVector::<Dual<P>, D>::from_fn(|i, _| Dual::new(xi[i], x[i].eps * grid.inv_spacing[i]));
-    let w = linear(&xi, &grid.inv_spacing);
-    let offsets = grid.corner_offsets();
-    (
-        std::array::from_fn(|k| (base + offsets[k]) as u32),
-        w.n,
-        w.grad,
-    )
-}
-
 impl<const D: usize, const P: usize> Tangent<D, P> {
     /// Start the derivative pass of `solver` before its first step, with `models[b]` the
     /// model of block b with its free parameters seeded (`materials::seeded::seeded`).
@@ -126,15 +123,17 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                 solver.blocks.len()
             ));
         }
+        let mut kernels = Vec::with_capacity(models.len());
         for (b, (block, model)) in solver.blocks.iter().zip(&models).enumerate() {
             let kernel = solver.kernel_of(b);
-            if kernel != ShapeFunction::Linear {
+            let Some(smooth) = SmoothKernel::of(kernel) else {
                 return refuse(format!(
-                    "body `{}` runs {} shape functions; the pass carries linear ones only (shape_function = \"linear\")",
+                    "body `{}` runs {} shape functions; the pass carries linear, cpdi and cpgimp",
                     block.name,
                     kernel.name()
                 ));
-            }
+            };
+            kernels.push(smooth);
             let (rho, modulus) = (model.density(), model.p_wave_modulus());
             if rho.re != block.material.density() || modulus.re != block.material.p_wave_modulus() {
                 return refuse(format!(
@@ -150,8 +149,11 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                 ));
             }
         }
-        if !solver.rigid.is_empty() {
-            return refuse("rigid bodies and bars (penalty contact) are not carried".into());
+        if let Some(rc) = solver.rigid.iter().find(|rc| rc.body.motion.bar.is_some()) {
+            return refuse(format!(
+                "the face `{}` moves with an elastic bar, which the pass does not carry",
+                rc.body.name
+            ));
         }
         if !solver.conditions.is_empty() {
             return refuse("point conditions (springs) are not carried".into());
@@ -175,6 +177,11 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             volume: vec![Dual::from_re(0.0); n],
             state,
             nodes: Vec::new(),
+            stencils: DualStencils::new(n, &kernels),
+            kernels,
+            attachment: vec![vec![None; n]; solver.rigid.len()],
+            loads: Vec::new(),
+            contact_force: vec![SVector::zeros(); solver.rigid.len()],
         })
     }
 
@@ -218,16 +225,40 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             UpdateVelocityAndStress => self.gather(s, true, true)?,
             Advect => self.advect(s),
             // the grid's lattice and the forces applied to points do not depend on the
-            // parameters; Δt is held
+            // parameters; Δt is held; contact follows its stage (`after`)
             FitGrid | AppliedForces | ContactForces | BarFaces | AdvanceTime | CheckEnergy
             | CheckTimeStep => {}
         }
         Ok(())
     }
 
+    /// The part of `stage`'s derivative that needs the stage's own decisions: contact the
+    /// candidates its search found, the contact loads of a force map the nodal masses it
+    /// mapped (which nodes share a load).
+    fn after(&mut self, stage: Stage, s: &Solver<D>) {
+        match stage {
+            Stage::ContactForces => self.contact(s),
+            Stage::MapMassMomentumForce | Stage::MapForce => self.add_surface_loads(s),
+            _ => {}
+        }
+    }
+
+    /// The weights of every point at the start of the step (its first transfer), from x
+    /// and F with their derivatives, as the run evaluates them after fitting the grid.
+    fn evaluate_weights(&mut self, s: &Solver<D>) {
+        for (b, block) in s.blocks.iter().enumerate() {
+            for i in block.range.clone() {
+                let (x, f) = (self.position(s, i), self.deformation(s, i));
+                let point = (&x, &f, &s.particles.half_size[i]);
+                self.stencils.fill(i, self.kernels[b], &s.grid, point);
+            }
+        }
+    }
+
     /// Derivatives of the transfer `t` (algorithm 9), point by point in index order.
     fn map(&mut self, s: &Solver<D>, t: Transfer) {
         if t.mass {
+            self.evaluate_weights(s);
             self.nodes.clear();
             self.nodes.resize(s.grid.nodes.len(), Node::zero());
         }
@@ -250,8 +281,8 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                 (&self.stress(s, i), self.volume(s, i), &x),
                 s.settings.kinematics,
             );
-            let (node, n, grad) = weights(&s.grid, &x);
-            for k in 0..corners(D) {
+            let (node, n, grad) = self.stencils.of(i);
+            for k in 0..node.len() {
                 share.add_to(&mut self.nodes[node[k] as usize], t, n[k], &grad[k]);
             }
         }
@@ -303,6 +334,8 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             volume,
             state,
             nodes,
+            stencils,
+            ..
         } = self;
         let dt = c::<Dual<P>>(s.dt);
         let points = (
@@ -319,10 +352,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                 .enumerate()
                 .map(|(i, (v, vg, f, sigma, vol, st))| -> Failure {
                     let x = join_all(&s.particles.position[i], &position[i]);
-                    let (node, n, grad) = weights(&s.grid, &x);
-                    let reach = corners(D);
-                    let (v_grid, a, l) =
-                        interpolate(nodes, (&node[..reach], &n[..reach], &grad[..reach]));
+                    let (v_grid, a, l) = interpolate(nodes, stencils.of(i));
                     if motion {
                         *v = join_all(&s.particles.velocity[i], v) + a * dt;
                         *vg = v_grid;
@@ -385,6 +415,7 @@ impl<const D: usize> Solver<D> {
         for &stage in self.settings.scheme.stages() {
             tangent.before(stage, self)?;
             self.run_stage(stage)?;
+            tangent.after(stage, self);
         }
         Ok(())
     }

@@ -1,0 +1,184 @@
+//! The weights N_I and gradients ∇N_I of the nodes a point reaches, with their
+//! derivatives along the parameter directions, for the kernels whose weights are smooth
+//! functions of the point's x and F between cell crossings:
+//!
+//! - linear: the 2ᴰ corners of the point's cell, N = Π_k (1 − ξ_k or ξ_k);
+//! - the vertex form (CPDI1, R = F diag(a), and the thesis's cpGIMP, R = diag(F_kk a_k);
+//!   module `shape::cpdi`): N^I = 2^{−D} Σ_j N^I(x^j), ∇N^I = 2^{−D} Σ_j N^I(x^j) R^{−T} ξ^j
+//!   with the vertices x^j = x + R ξ^j, so the derivatives carry both the vertices' motion
+//!   and the domain's deformation.
+//!
+//! Which cell holds the point or a vertex follows the real parts, as in the run. A node
+//! may appear more than once in a point's list (one entry per vertex that reaches it):
+//! every transfer adds the entries, so the sums are the run's.
+
+use super::Dual;
+use crate::grid::{floor_i64, Grid};
+use crate::shape::domain::{Deformed, Follow, Stretched};
+use crate::shape::{corners, linear, ShapeFunction};
+use materials::scalar::c;
+use materials::tensor::inverse;
+use nalgebra::{Matrix3, SMatrix, SVector};
+
+/// A kernel the derivative pass carries, `None` for one it does not.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum SmoothKernel {
+    Linear,
+    Cpdi,
+    CpGimp,
+}
+
+impl SmoothKernel {
+    pub(super) fn of(kernel: ShapeFunction) -> Option<SmoothKernel> {
+        match kernel {
+            ShapeFunction::Linear => Some(SmoothKernel::Linear),
+            ShapeFunction::Cpdi => Some(SmoothKernel::Cpdi),
+            ShapeFunction::CpGimp => Some(SmoothKernel::CpGimp),
+            ShapeFunction::UGimp | ShapeFunction::CpGimpAnalytic | ShapeFunction::CpdiHex => None,
+        }
+    }
+
+    /// Entries a point's list holds at most: 2ᴰ corners of one cell or of each of the 2ᴰ
+    /// vertices' cells.
+    pub(super) fn room(self, d: usize) -> usize {
+        match self {
+            SmoothKernel::Linear => corners(d),
+            SmoothKernel::Cpdi | SmoothKernel::CpGimp => corners(d) * corners(d),
+        }
+    }
+}
+
+/// The entries of every point of one step, `room` per point.
+pub(super) struct DualStencils<const D: usize, const P: usize> {
+    room: usize,
+    len: Vec<u8>,
+    node: Vec<u32>,
+    n: Vec<Dual<P>>,
+    grad: Vec<SVector<Dual<P>, D>>,
+}
+
+/// One point's entries: node numbers, N and ∇N with derivatives.
+pub(super) type Entries<'a, const D: usize, const P: usize> =
+    (&'a [u32], &'a [Dual<P>], &'a [SVector<Dual<P>, D>]);
+
+impl<const D: usize, const P: usize> DualStencils<D, P> {
+    /// Room for `count` points with kernels `kernels` (the largest room of them).
+    pub(super) fn new(count: usize, kernels: &[SmoothKernel]) -> Self {
+        let room = kernels
+            .iter()
+            .map(|k| k.room(D))
+            .max()
+            .unwrap_or(corners(D));
+        DualStencils {
+            room,
+            len: vec![0; count],
+            node: vec![0; count * room],
+            n: vec![Dual::from_re(0.0); count * room],
+            grad: vec![SVector::zeros(); count * room],
+        }
+    }
+
+    /// Point `i`'s entries.
+    #[inline]
+    pub(super) fn of(&self, i: usize) -> Entries<'_, D, P> {
+        let range = i * self.room..i * self.room + self.len[i] as usize;
+        (
+            &self.node[range.clone()],
+            &self.n[range.clone()],
+            &self.grad[range],
+        )
+    }
+
+    /// Evaluate point `i` at x with F and reference half-widths `half` on `grid`.
+    pub(super) fn fill(
+        &mut self,
+        i: usize,
+        kernel: SmoothKernel,
+        grid: &Grid<D>,
+        (x, f, half): (&SVector<Dual<P>, D>, &Matrix3<Dual<P>>, &SVector<f64, D>),
+    ) {
+        let start = i * self.room;
+        let mut len = 0;
+        let mut push = |node: i64, n: Dual<P>, grad: SVector<Dual<P>, D>| {
+            self.node[start + len] = node as u32;
+            self.n[start + len] = n;
+            self.grad[start + len] = grad;
+            len += 1;
+        };
+        let (corner, xi) = grid.locate(&x.map(|x| x.re));
+        let xi =
+            SVector::<Dual<P>, D>::from_fn(|k, _| Dual::new(xi[k], x[k].eps * grid.inv_spacing[k]));
+        let domain = match kernel {
+            SmoothKernel::Linear => None,
+            SmoothKernel::Cpdi => edges_and_inverse::<Deformed, D, P>(half, f),
+            SmoothKernel::CpGimp => edges_and_inverse::<Stretched, D, P>(half, f),
+        };
+        match domain {
+            None => {
+                let w = linear(&xi, &grid.inv_spacing);
+                let offsets = grid.corner_offsets();
+                for k in 0..corners(D) {
+                    push((corner + offsets[k]) as i64, w.n[k], w.grad[k]);
+                }
+            }
+            Some((r, r_inv_t)) => {
+                let share = 1.0 / corners(D) as f64;
+                for j in 0..corners(D) {
+                    let sign =
+                        SVector::<f64, D>::from_fn(
+                            |k, _| {
+                                if (j >> k) & 1 == 1 {
+                                    1.0
+                                } else {
+                                    -1.0
+                                }
+                            },
+                        );
+                    let sign = sign.map(c::<Dual<P>>);
+                    let vertex = xi + (r * sign).component_mul(&grid.inv_spacing.map(c));
+                    let g = r_inv_t * sign * c::<Dual<P>>(share);
+                    let cell: [i64; D] = std::array::from_fn(|k| floor_i64(vertex[k].re));
+                    let local = SVector::<Dual<P>, D>::from_fn(|k, _| vertex[k] - cell[k] as f64);
+                    let base: i64 = (0..D).map(|k| cell[k] * grid.strides[k] as i64).sum();
+                    for (m, w) in corner_weights(&local).iter().enumerate().take(corners(D)) {
+                        let offset: i64 = (0..D)
+                            .map(|k| ((m >> k) & 1) as i64 * grid.strides[k] as i64)
+                            .sum();
+                        push(corner as i64 + base + offset, *w * share, g * *w);
+                    }
+                }
+            }
+        }
+        self.len[i] = len as u8;
+    }
+}
+
+/// The domain's half-edge vectors R and R^{−T} by rule `M`; `None` for a point without a
+/// domain or with a degenerate one (the linear weights, as in the run).
+fn edges_and_inverse<M: Follow, const D: usize, const P: usize>(
+    half: &SVector<f64, D>,
+    f: &Matrix3<Dual<P>>,
+) -> Option<(SMatrix<Dual<P>, D, D>, SMatrix<Dual<P>, D, D>)> {
+    if half.min() <= 0.0 {
+        return None;
+    }
+    let r = M::edges(half, f);
+    let mut r3 = Matrix3::<Dual<P>>::identity();
+    r3.view_mut((0, 0), (D, D)).copy_from(&r);
+    let inv = inverse(&r3)?;
+    Some((r, inv.fixed_view::<D, D>(0, 0).transpose()))
+}
+
+/// The linear weights of a cell's 2ᴰ corners at local coordinates `xi` (x fastest).
+fn corner_weights<const D: usize, const P: usize>(xi: &SVector<Dual<P>, D>) -> [Dual<P>; 8] {
+    let mut weight = [Dual::from_re(0.0); 8];
+    weight[0] = Dual::from_re(1.0);
+    for k in 0..D {
+        let half = 1 << k;
+        for m in 0..half {
+            weight[m + half] = weight[m] * xi[k];
+            weight[m] *= Dual::from_re(1.0) - xi[k];
+        }
+    }
+    weight
+}
