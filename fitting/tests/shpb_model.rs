@@ -168,7 +168,8 @@ fn mpm_set_text() -> String {
 }
 
 /// A set file's MPM fields: `drive` names a drive of the model and belongs to the MPM
-/// level; the error names the field (`{:#}` prints the set file and experiment).
+/// level; `jacobian = "exact"` needs a drive and kernel the derivative pass carries; the
+/// error names the field (`{:#}` prints the set file and experiment).
 #[test]
 fn a_set_file_with_a_bad_drive_names_it() {
     if scene(Drive::MeasuredVelocity).is_none() {
@@ -185,6 +186,18 @@ fn a_set_file_with_a_bad_drive_names_it() {
         (
             "level = \"single-point\"\ndrive = \"incident-pulse\"",
             "belong to the MPM levels",
+        ),
+        (
+            "level = \"mpm-axisymmetric\"\njacobian = \"analytic\"",
+            "`experiment.jacobian`: \"analytic\", expected \"finite-difference\" or \"exact\"",
+        ),
+        (
+            "level = \"mpm-axisymmetric\"\njacobian = \"exact\"\ndrive = \"incident-pulse\"",
+            "needs drive = \"measured-velocity\"",
+        ),
+        (
+            "level = \"mpm-axisymmetric\"\njacobian = \"exact\"\nshape_function = \"ugimp\"",
+            "needs shape_function",
         ),
     ] {
         let file = std::env::temp_dir().join(format!("mpw-drive-{}.toml", std::process::id()));

@@ -87,3 +87,34 @@ where
 {
     Box::new(model.map_params(|name, v| seed_named(free, name, v)))
 }
+
+/// Most directions a derivative pass carries (`for_directions`).
+pub const MAX_DIRECTIONS: usize = 6;
+
+/// Work done with a number of directions fixed at compile time (`for_directions`).
+pub trait ForDirections {
+    type Output;
+    /// Run with the `P` directions `free`.
+    fn run<const P: usize>(self, free: [&str; P]) -> Self::Output;
+}
+
+/// `job` with the directions `free` as an array of their number, 1 to `MAX_DIRECTIONS`;
+/// `Err` for another count.
+pub fn for_directions<J: ForDirections>(free: &[&str], job: J) -> Result<J::Output, String> {
+    fn array<'a, const P: usize>(free: &[&'a str]) -> [&'a str; P] {
+        std::array::from_fn(|k| free[k])
+    }
+    Ok(match free.len() {
+        1 => job.run(array::<1>(free)),
+        2 => job.run(array::<2>(free)),
+        3 => job.run(array::<3>(free)),
+        4 => job.run(array::<4>(free)),
+        5 => job.run(array::<5>(free)),
+        6 => job.run(array::<6>(free)),
+        n => {
+            return Err(format!(
+                "{n} parameters to carry derivatives along; give 1 to {MAX_DIRECTIONS}"
+            ))
+        }
+    })
+}

@@ -9,14 +9,14 @@
 use crate::output::AXES;
 use crate::solver::{RunError, Solver, Tangent, Unsupported};
 use materials::ad::eps;
-use materials::seeded::seeded_where_present;
+use materials::seeded::{for_directions, seeded_where_present, ForDirections, MAX_DIRECTIONS};
 use materials::{AnyModel, Model};
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
 
 /// Most parameters a run carries derivatives along.
-pub const MAX_PARAMETERS: usize = 6;
+pub const MAX_PARAMETERS: usize = MAX_DIRECTIONS;
 
 /// How a run takes its steps.
 pub type Stepper<'a, const D: usize> = Box<dyn FnMut(&mut Solver<D>) -> Result<(), RunError> + 'a>;
@@ -41,56 +41,66 @@ pub fn stepper<'a, const D: usize>(
     free: &[String],
     (dir, every): (&Path, usize),
 ) -> Result<Stepper<'a, D>, DerivativeError> {
-    match free.len() {
-        1 => with::<D, 1>(solver, models, free, (dir, every)),
-        2 => with::<D, 2>(solver, models, free, (dir, every)),
-        3 => with::<D, 3>(solver, models, free, (dir, every)),
-        4 => with::<D, 4>(solver, models, free, (dir, every)),
-        5 => with::<D, 5>(solver, models, free, (dir, every)),
-        6 => with::<D, 6>(solver, models, free, (dir, every)),
-        n => Err(DerivativeError::Parameters(format!(
-            "output.derivatives names {n} parameters; give 1 to {MAX_PARAMETERS}"
-        ))),
-    }
+    let names: Vec<&str> = free.iter().map(String::as_str).collect();
+    let job = Job {
+        solver,
+        models,
+        dir,
+        every,
+    };
+    for_directions(&names, job)
+        .map_err(|why| DerivativeError::Parameters(format!("output.derivatives: {why}")))?
 }
 
-fn with<'a, const D: usize, const P: usize>(
-    solver: &Solver<D>,
-    models: &[AnyModel],
-    free: &[String],
-    (dir, every): (&Path, usize),
-) -> Result<Stepper<'a, D>, DerivativeError> {
-    let names: [&str; P] = std::array::from_fn(|k| free[k].as_str());
-    // each parameter's value, from the first body whose model has it
-    let mut scales = Vec::with_capacity(P);
-    for name in names {
-        match models.iter().find_map(|m| m.param(name)) {
-            Some(value) => scales.push(value),
-            None => {
-                return Err(DerivativeError::Parameters(format!(
-                    "no body's model has a parameter `{name}` (the first has {})",
-                    models
-                        .first()
-                        .map(|m| m.param_names().join(", "))
-                        .unwrap_or_default()
-                )))
+/// What `stepper` hands to `for_directions`.
+struct Job<'s, const D: usize> {
+    solver: &'s Solver<D>,
+    models: &'s [AnyModel],
+    dir: &'s Path,
+    every: usize,
+}
+
+impl<const D: usize> ForDirections for Job<'_, D> {
+    type Output = Result<Stepper<'static, D>, DerivativeError>;
+
+    fn run<const P: usize>(self, names: [&str; P]) -> Self::Output {
+        let Job {
+            solver,
+            models,
+            dir,
+            every,
+        } = self;
+        // each parameter's value, from the first body whose model has it
+        let mut scales = Vec::with_capacity(P);
+        for name in names {
+            match models.iter().find_map(|m| m.param(name)) {
+                Some(value) => scales.push(value),
+                None => {
+                    return Err(DerivativeError::Parameters(format!(
+                        "no body's model has a parameter `{name}` (the first has {})",
+                        models
+                            .first()
+                            .map(|m| m.param_names().join(", "))
+                            .unwrap_or_default()
+                    )))
+                }
             }
         }
+        let seeded = models
+            .iter()
+            .map(|m| seeded_where_present(m, &names))
+            .collect();
+        let mut tangent = Tangent::new(solver, seeded)?;
+        let mut writer = Writer::create(&dir.join("derivatives.csv"), solver, &names, scales)?;
+        writer.write(solver, &tangent)?;
+        Ok(Box::new(move |s: &mut Solver<D>| {
+            s.step_with(&mut tangent)?;
+            if s.step.is_multiple_of(every) {
+                writer.write(s, &tangent)?;
+            }
+            Ok(())
+        }))
     }
-    let seeded = models
-        .iter()
-        .map(|m| seeded_where_present(m, &names))
-        .collect();
-    let mut tangent = Tangent::new(solver, seeded)?;
-    let mut writer = Writer::create(&dir.join("derivatives.csv"), solver, &names, scales)?;
-    writer.write(solver, &tangent)?;
-    Ok(Box::new(move |s: &mut Solver<D>| {
-        s.step_with(&mut tangent)?;
-        if s.step.is_multiple_of(every) {
-            writer.write(s, &tangent)?;
-        }
-        Ok(())
-    }))
 }
 
 /// Streams the rows of `derivatives.csv`, flushed every row.

@@ -37,12 +37,14 @@
 //! and the face force dips for ≈ 0.5 µs (the cell-crossing error; GIMP/CPDI).
 //! Units: SI.
 
+mod derivatives;
 pub mod geometry;
 pub mod record;
 mod run;
 pub mod scene;
 pub mod study;
 
+pub use derivatives::ForceDerivatives;
 pub use run::{AnyObserver, FaceHistory, ShpbRun};
 
 pub use geometry::{Discretization, ModelLevel};

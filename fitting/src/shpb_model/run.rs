@@ -7,7 +7,7 @@ use materials::Material;
 use mpm_core::melting::{Melting, MeltingWatch};
 use mpm_core::parallel::LARGE_MODEL_FROM;
 use mpm_core::solver::observer::{observe_all, Observer, Verdict};
-use mpm_core::solver::RigidContact;
+use mpm_core::solver::{RigidContact, RunError};
 use mpm_core::{Solver, Template};
 use std::sync::Arc;
 use std::time::Instant;
@@ -46,7 +46,9 @@ pub struct ShpbRun {
 
 /// `run` on one thread, inside its own pool: a model of a few thousand points runs the
 /// parallel loops of a step inline instead of waking threads.
-fn one_thread(run: impl FnOnce() -> anyhow::Result<ShpbRun> + Send) -> anyhow::Result<ShpbRun> {
+pub(super) fn one_thread<R: Send>(
+    run: impl FnOnce() -> anyhow::Result<R> + Send,
+) -> anyhow::Result<R> {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
     pool.install(run)
 }
@@ -123,9 +125,20 @@ impl ShpbModel {
         end: f64,
         observe: &mut dyn FnMut(&Solver<D>) -> Verdict,
     ) -> anyhow::Result<ShpbRun> {
-        let start = Instant::now();
         let mut solver = template.instantiate(&[(SPECIMEN, material)])?;
         solver.initialize();
+        self.run_solver(solver, end, observe, |s| Ok(s.step()?))
+    }
+
+    /// Run `solver` (initialized) to `end`, each step taken by `step`.
+    pub(super) fn run_solver<const D: usize>(
+        &self,
+        mut solver: Solver<D>,
+        end: f64,
+        observe: &mut dyn FnMut(&Solver<D>) -> Verdict,
+        step: impl FnMut(&mut Solver<D>) -> Result<(), RunError>,
+    ) -> anyhow::Result<ShpbRun> {
+        let start = Instant::now();
         let mut h = FaceHistory::default();
         let mut melting = MeltingWatch::default();
         let mut each = |s: &Solver<D>| -> Verdict {
@@ -134,7 +147,7 @@ impl ShpbModel {
             observe(s)
         };
         let first = each(&solver)?;
-        if first.is_break() || solver.run_until(end, &mut [&mut each])?.is_break() {
+        if first.is_break() || solver.run_until_by(end, &mut [&mut each], step)?.is_break() {
             anyhow::bail!(
                 "the SHPB run was stopped by its caller at step {} (t = {:.4e} s)",
                 solver.step,

@@ -26,7 +26,7 @@ pub mod time_step;
 pub use energies::Energies;
 pub use scheme::{Data, Scheme, Stage};
 pub use settings::Settings;
-pub use tangent::{Tangent, Unsupported};
+pub use tangent::{carries, Tangent, Unsupported};
 pub use time_step::{TimeStep, TimeStepChange};
 
 use crate::boundary::{PointCondition, VelocityBc};

@@ -42,12 +42,13 @@
 //! catches a contact event that moved by a step; at 1e-2 it is back to 47, 33 and 17 kN
 //! while the curvature error of the mean is still below 0.5 %.
 
-use crate::fit::levels::model::{ExperimentModel, Material};
+use crate::fit::levels::model::{finite_difference, ExperimentModel, Material};
 use crate::shpb::pulses::SMOOTHING_S;
 use crate::shpb::signal::{cumulative_integral, interpolate};
 use crate::shpb_model::record::preheated;
 use crate::shpb_model::{ContactChange, ShpbModel};
 use anyhow::Result;
+use nalgebra::DMatrix;
 
 /// Relative forward-difference step of an MPM level.
 pub const FD_STEP: f64 = 1e-2;
@@ -92,12 +93,38 @@ impl FaceForces {
     }
 }
 
+/// How an MPM level gives its Jacobian.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Jacobian {
+    /// Forward differences at the relative step `FD_STEP`, one run per free parameter.
+    #[default]
+    FiniteDifference,
+    /// Exact derivatives of the run carried beside it (`ShpbModel::run_with_derivatives`).
+    Exact,
+}
+
+impl std::str::FromStr for Jacobian {
+    type Err = String;
+
+    /// The name in set files.
+    fn from_str(name: &str) -> Result<Jacobian, String> {
+        match name {
+            "finite-difference" => Ok(Jacobian::FiniteDifference),
+            "exact" => Ok(Jacobian::Exact),
+            other => Err(format!(
+                "\"{other}\", expected \"finite-difference\" or \"exact\""
+            )),
+        }
+    }
+}
+
 pub struct MpmShpb {
     model: ShpbModel,
     /// Model times of the samples [s].
     sample_times: Vec<f64>,
     forces: FaceForces,
     theta_start: f64,
+    jacobian: Jacobian,
 }
 
 impl MpmShpb {
@@ -114,7 +141,30 @@ impl MpmShpb {
             sample_times,
             forces,
             theta_start,
+            jacobian: Jacobian::default(),
         }
+    }
+
+    /// This model giving its Jacobian by `jacobian`.
+    pub fn with_jacobian(self, jacobian: Jacobian) -> Self {
+        MpmShpb { jacobian, ..self }
+    }
+
+    /// The compared channels of a run's face forces `(F1, F2)` at the samples, each the
+    /// mean over `GAUGE_WINDOW` (F1 before F2 when both are compared).
+    fn at_samples(&self, time: &[f64], incident: &[f64], transmitted: &[f64]) -> Vec<f64> {
+        let at = |force: &[f64]| window_means(time, force, &self.sample_times, GAUGE_WINDOW);
+        match self.forces {
+            FaceForces::F1 => at(incident),
+            FaceForces::F2 => at(transmitted),
+            FaceForces::Both => [at(incident), at(transmitted)].concat(),
+        }
+    }
+
+    /// The end of a run that covers every sample's window [s].
+    fn end(&self) -> f64 {
+        let last = self.sample_times.iter().copied().fold(0.0, f64::max);
+        last + GAUGE_WINDOW
     }
 }
 
@@ -132,21 +182,41 @@ impl ExperimentModel for MpmShpb {
     }
 
     fn predict_with_warnings(&self, material: &Material) -> Result<(Vec<f64>, Vec<String>)> {
-        let last = self.sample_times.iter().copied().fold(0.0, f64::max);
         let run = self
             .model
-            .run_until(preheated(material, self.theta_start), last + GAUGE_WINDOW)?;
+            .run_until(preheated(material, self.theta_start), self.end())?;
         let h = &run.history;
-        let at = |force: &[f64]| window_means(&h.time_s, force, &self.sample_times, GAUGE_WINDOW);
-        let prediction = match self.forces {
-            FaceForces::F1 => at(&h.force_incident_n),
-            FaceForces::F2 => at(&h.force_transmitted_n),
-            FaceForces::Both => [at(&h.force_incident_n), at(&h.force_transmitted_n)].concat(),
-        };
+        let prediction = self.at_samples(&h.time_s, &h.force_incident_n, &h.force_transmitted_n);
         Ok((
             prediction,
             run.melting.iter().map(|m| m.to_string()).collect(),
         ))
+    }
+
+    /// Finite differences (`finite_difference`) or, with `Jacobian::Exact`, one run with
+    /// the derivatives of the face forces carried along; the window means are linear, so
+    /// a sample's derivative is the window mean of the force's derivative.
+    fn predict_with_jacobian(
+        &self,
+        material: &Material,
+        free: &[&str],
+    ) -> Result<(Vec<f64>, DMatrix<f64>)> {
+        if self.jacobian == Jacobian::FiniteDifference {
+            return finite_difference(self, material, free);
+        }
+        let (run, d) =
+            self.model
+                .run_with_derivatives(material, self.theta_start, free, self.end())?;
+        let h = &run.history;
+        let prediction = self.at_samples(&h.time_s, &h.force_incident_n, &h.force_transmitted_n);
+        let columns: Vec<Vec<f64>> = (0..free.len())
+            .map(|k| {
+                let column = |rows: &[Vec<f64>]| rows.iter().map(|r| r[k]).collect::<Vec<f64>>();
+                self.at_samples(&h.time_s, &column(&d.incident), &column(&d.transmitted))
+            })
+            .collect();
+        let jacobian = DMatrix::from_fn(prediction.len(), free.len(), |i, k| columns[k][i]);
+        Ok((prediction, jacobian))
     }
 
     fn fd_step(&self) -> f64 {

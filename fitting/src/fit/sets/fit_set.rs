@@ -4,7 +4,7 @@
 use crate::experiment::{load_experiments, Experiment, ShpbExperiment, TensileExperiment};
 use crate::fit::evaluations::{Evaluations, InProcess};
 use crate::fit::levels::model::{with_values, ExperimentModel, Material};
-use crate::fit::levels::mpm_shpb::{FaceForces, MpmShpb};
+use crate::fit::levels::mpm_shpb::{FaceForces, Jacobian, MpmShpb};
 use crate::fit::levels::shpb_input::face_signals;
 use crate::fit::levels::shpb_specimen::ShpbSpecimen;
 use crate::fit::levels::single_point::SinglePoint;
@@ -306,9 +306,10 @@ fn build_block(base: &Material, exp: &Experiment, entry: &ExperimentEntry) -> Re
         entry.friction.is_some(),
         entry.shape_function.is_some(),
         entry.drive.is_some(),
+        entry.jacobian.is_some(),
     ];
     if level == Level::SinglePoint && mpm_fields.contains(&true) {
-        return Err(field("level", "`layers`, `friction`, `shape_function` and `drive` belong to the MPM levels (level = \"mpm-axisymmetric\", ...)"));
+        return Err(field("level", "`layers`, `friction`, `shape_function`, `drive` and `jacobian` belong to the MPM levels (level = \"mpm-axisymmetric\", ...)"));
     }
     let max = entry.max_samples.unwrap_or(DEFAULT_MAX_SAMPLES);
     match (exp, level) {
@@ -432,9 +433,27 @@ fn mpm_block_model(
             ),
         ));
     }
+    let jacobian = match &entry.jacobian {
+        Some(name) => name.parse().map_err(|e: String| field("jacobian", e))?,
+        None => Jacobian::FiniteDifference,
+    };
+    if jacobian == Jacobian::Exact {
+        if settings.drive != Drive::MeasuredVelocity {
+            return Err(field("jacobian", "\"exact\" needs drive = \"measured-velocity\": the derivatives are not yet carried through faces on elastic bars"));
+        }
+        if !mpm_core::solver::carries(settings.shape_function) {
+            return Err(field(
+                "jacobian",
+                format!(
+                    "\"exact\" needs shape_function \"cpdi\", \"cpgimp\" or \"linear\", not \"{}\"",
+                    settings.shape_function.name()
+                ),
+            ));
+        }
+    }
     let times = samples.iter().map(|&k| analysis.time_s[k]).collect();
     let model = record::model(e, analysis, settings, base)?;
-    Ok(MpmShpb::new(model, times, forces, e.temperature_k))
+    Ok(MpmShpb::new(model, times, forces, e.temperature_k).with_jacobian(jacobian))
 }
 
 /// Mean of R = 2 |F1 − F2| / |F1 + F2| over `range` [-].

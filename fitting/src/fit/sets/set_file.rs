@@ -35,6 +35,9 @@
 //! drive = "measured-velocity" # MPM levels: the incident face follows the measured
 //!                             #   v1 − v2 (default), or "incident-pulse": both faces on elastic
 //!                             #   bars, only ε_i drives, the model predicts ε_r and ε_t
+//! jacobian = "exact"          # MPM levels: "finite-difference" (default, one run per free
+//!                             #   parameter) or "exact": the derivatives carried through one
+//!                             #   run (measured-velocity drive; linear, cpdi or cpgimp)
 //! thermal = "isothermal"      # tensile: "isothermal" | "adiabatic" (default: adiabatic above 1 1/s)
 //! window = [15e-6, 115e-6]    # shpb (required): window [s] after the incident pulse start at the
 //!                             #   faces, or "plateau": the strain-rate plateau of `shpb::analyze`
@@ -139,6 +142,7 @@ pub struct ExperimentEntry {
     pub friction: Option<f64>,
     pub shape_function: Option<String>,
     pub drive: Option<String>,
+    pub jacobian: Option<String>,
 }
 
 /// An SHPB fit window: explicit times [s] or the strain-rate plateau (`"plateau"`).

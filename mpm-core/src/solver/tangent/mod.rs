@@ -34,6 +34,7 @@ use super::scatter::{PointShare, Transfer};
 use super::{Solver, Stage};
 use crate::failure::{Cause, SimulationError};
 use crate::grid::Node;
+use crate::shape::ShapeFunction;
 use contact::DualLoad;
 use materials::ad::eps;
 use materials::scalar::c;
@@ -100,6 +101,11 @@ fn join_state<const P: usize>(re: &State<f64>, d: &State<Dual<P>>) -> State<Dual
         theta: join(re.theta, d.theta),
         dalpha: join(re.dalpha, d.dalpha),
     }
+}
+
+/// Whether the pass carries shape functions `kernel`.
+pub fn carries(kernel: ShapeFunction) -> bool {
+    SmoothKernel::of(kernel).is_some()
 }
 
 impl<const D: usize, const P: usize> Tangent<D, P> {
