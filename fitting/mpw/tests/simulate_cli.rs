@@ -1,5 +1,6 @@
 //! `mpw simulate` warns at the start when Δt is above the CFL limit and names that setting
-//! as the likely cause when the run then fails.
+//! as the likely cause when the run then fails; SHPB scenes name their parameters and write
+//! exact derivatives.
 
 use std::path::Path;
 use std::process::Command;
@@ -144,4 +145,56 @@ fn points_that_reach_the_melting_temperature_are_warned_about() {
         !run("1356.0").contains("melting"),
         "real copper does not melt here"
     );
+}
+
+/// `--derivatives` on an SHPB scene writes each face force's sensitivity p ∂F/∂p per
+/// parameter (the material file's values as the scale), nonzero once the specimen yields;
+/// a scene whose faces sit on elastic bars is refused with the reason.
+#[test]
+fn an_shpb_scene_writes_the_face_forces_derivatives() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .canonicalize()
+        .unwrap();
+    let data = root.join("data");
+    let scene = |drive: &str| {
+        format!(
+            "kind = \"shpb\"\nexperiment = \"{}\"\nmaterial = \"{}\"\nlevel = \"mpm-axisymmetric\"\n\
+             drive = \"{drive}\"\nlayers = 4\n",
+            data.join("experiments/shpb_293K.toml").display(),
+            data.join("materials/42crmo4_qt660.toml").display()
+        )
+    };
+    let dir = std::env::temp_dir().join(format!("mpw-simulate-shpb-d-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = |drive: &str| {
+        std::fs::write(dir.join("shpb.toml"), scene(drive)).unwrap();
+        Command::new(env!("CARGO_BIN_EXE_mpw"))
+            .args(["simulate", dir.join("shpb.toml").to_str().unwrap(), "--out"])
+            .arg(dir.join("out"))
+            .args(["--derivatives", "A,C"])
+            .output()
+            .unwrap()
+    };
+    let out = run("measured-velocity");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let csv = std::fs::read_to_string(dir.join("out/derivatives.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("time_s,F1_A_n,F2_A_n,F1_C_n,F2_C_n"));
+    let last: Vec<f64> = (lines.last().unwrap().split(','))
+        .map(|v| v.parse().unwrap())
+        .collect();
+    assert!(
+        last[2] > 0.0 && last[4] > 0.0,
+        "F2 rises with A and C: {last:?}"
+    );
+    assert!(dir.join("out/derivatives.png").is_file());
+    let out = run("incident-pulse");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("elastic bar"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
 }

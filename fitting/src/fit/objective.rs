@@ -282,7 +282,8 @@ impl<'a> Objective<'a> {
         let dpdu = self.space.derivatives(u);
         let material = self.material(&p);
         let names = self.space.names();
-        if self.jacobian_is_cheap(kind) {
+        let own = |b: &&Block| b.model.has_own_jacobian();
+        if kind == JacobianKind::Exact && self.blocks.iter().all(own) {
             self.jacobians.fetch_add(1, Ordering::Relaxed);
         } else {
             // One base pass plus one pass per parameter.
@@ -309,7 +310,7 @@ impl<'a> Objective<'a> {
 
 impl Objective<'_> {
     /// Each experiment's prediction and Jacobian d(prediction)/d(parameter) at `material`:
-    /// a model's own when it is cheap and `kind` is exact (dual numbers, in this process),
+    /// a model's own when it has one and `kind` is exact (dual numbers, in this process),
     /// else forward differences, whose runs go to the evaluations as one batch.
     fn jacobian_parts(
         &self,
@@ -317,7 +318,7 @@ impl Objective<'_> {
         names: &[&str],
         kind: JacobianKind,
     ) -> Result<Vec<(Vec<f64>, DMatrix<f64>)>> {
-        let own = |b: &Block| kind == JacobianKind::Exact && b.model.jacobian_is_cheap();
+        let own = |b: &Block| kind == JacobianKind::Exact && b.model.has_own_jacobian();
         let mut points = Vec::with_capacity(self.blocks.len());
         let mut requests = Vec::new();
         for &block in &self.blocks {

@@ -20,6 +20,7 @@ pub mod run_one;
 pub mod shpb;
 pub mod simulate;
 pub mod simulate_shpb;
+pub mod simulate_shpb_derivatives;
 pub mod sweep;
 pub mod synth;
 pub mod verify;

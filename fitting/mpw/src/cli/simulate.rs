@@ -32,9 +32,11 @@ pub struct Args {
     /// doubled, and report how far the transmitter-face force moves.
     #[arg(long)]
     pub sensitivity: bool,
-    /// MPM scenes: carry exact derivatives along these material parameters (e.g.
-    /// A,B,N,C,M; at most 6, instead of the scene's `output.derivatives`) and write the
-    /// control points' sensitivities p ∂x/∂p to derivatives.csv and derivatives.png.
+    /// Carry exact derivatives along these material parameters (e.g. A,B,N,C,M; at most
+    /// 6). MPM scenes (instead of the scene's `output.derivatives`): the control points'
+    /// sensitivities p ∂x/∂p to derivatives.csv and derivatives.png. SHPB scenes
+    /// (drive = "measured-velocity"): the face forces' sensitivities, scaled by the
+    /// standard errors of the --params report (else by the values).
     /// Needs linear, CPDI or cpGIMP shape functions; rigid bodies of prescribed motion are
     /// carried, faces on elastic bars and springs not yet.
     #[arg(long, value_delimiter = ',')]
@@ -50,13 +52,21 @@ pub fn run(args: Args) -> Result<()> {
     let out = args.out.unwrap_or_else(|| Path::new("out").join(&name));
     if fitting::shpb_model::scene::is_shpb_scene(&args.scene) {
         let params = args.params.as_deref();
-        return match args.refine.is_empty() {
-            true => super::simulate_shpb::run(&args.scene, params, &out, args.sensitivity),
-            false => super::simulate_shpb::refine(&args.scene, params, &args.refine, &out),
+        let options = [
+            !args.refine.is_empty(),
+            !args.derivatives.is_empty(),
+            args.sensitivity,
+        ];
+        if options.iter().filter(|o| **o).count() > 1 {
+            anyhow::bail!("--refine, --derivatives and --sensitivity are separate runs of an SHPB scene: give one");
+        }
+        return if !args.refine.is_empty() {
+            super::simulate_shpb::refine(&args.scene, params, &args.refine, &out)
+        } else if !args.derivatives.is_empty() {
+            super::simulate_shpb_derivatives::run(&args.scene, params, &args.derivatives, &out)
+        } else {
+            super::simulate_shpb::run(&args.scene, params, &out, args.sensitivity)
         };
-    }
-    if !args.derivatives.is_empty() && fitting::shpb_model::scene::is_shpb_scene(&args.scene) {
-        anyhow::bail!("--derivatives is for MPM scenes; the SHPB model does not carry derivatives yet (its bars and contact)");
     }
     if args.params.is_some() || !args.refine.is_empty() || args.sensitivity {
         anyhow::bail!("--params, --refine and --sensitivity are for SHPB scenes (kind = \"shpb\"); {} is an MPM scene with its materials inside", args.scene.display());

@@ -22,7 +22,7 @@ const SNAPSHOTS: usize = 10;
 
 /// The scene and its material (the scene's file, or `params`), saying on stderr which
 /// parameters the run uses and where they come from.
-fn load(scene_file: &Path, params: Option<&Path>) -> Result<(ShpbScene, ElastoPlastic)> {
+pub fn load(scene_file: &Path, params: Option<&Path>) -> Result<(ShpbScene, ElastoPlastic)> {
     let scene = ShpbScene::load(scene_file)?;
     let base = materials::load_elasto_plastic(&scene.material_file)?;
     let (material, source) = match params {

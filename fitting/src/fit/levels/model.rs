@@ -50,6 +50,13 @@ pub trait ExperimentModel: Send + Sync {
         false
     }
 
+    /// Whether `predict_with_jacobian` gives the model's own Jacobian (AD through the
+    /// driver, or the derivatives carried through an MPM run) rather than the default
+    /// finite differences, which the objective then batches itself. Default: when cheap.
+    fn has_own_jacobian(&self) -> bool {
+        self.jacobian_is_cheap()
+    }
+
     /// This experiment's model with its contact assumptions changed (penalty stiffness κ
     /// and friction μ, `fit::statistics::assumptions`); `None` for a level without contact.
     fn with_contact(&self, _change: &ContactChange) -> Result<Option<Box<dyn ExperimentModel>>> {

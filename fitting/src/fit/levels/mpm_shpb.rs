@@ -223,6 +223,10 @@ impl ExperimentModel for MpmShpb {
         FD_STEP
     }
 
+    fn has_own_jacobian(&self) -> bool {
+        self.jacobian == Jacobian::Exact
+    }
+
     fn with_contact(&self, change: &ContactChange) -> Result<Option<Box<dyn ExperimentModel>>> {
         Ok(Some(Box::new(MpmShpb {
             model: self.model.with_contact(change)?,

@@ -14,6 +14,7 @@ use anyhow::{bail, Context, Result};
 use materials::material::Model;
 use materials::AnyModel;
 use serde::Serialize;
+use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -561,6 +562,30 @@ pub fn read_parameters(base: &Material, file: &Path) -> Result<Material> {
         values.push(v);
     }
     Ok(with_values(base, &names, &values))
+}
+
+/// The standard errors a fit report gives its fitted parameters (the last stage that fits
+/// each), by name; empty for a material file.
+pub fn read_std_errors(file: &Path) -> Result<BTreeMap<String, f64>> {
+    let text = std::fs::read_to_string(file)
+        .with_context(|| format!("{}: cannot read", file.display()))?;
+    let value: toml::Value = toml::from_str(&text)
+        .map_err(|e| anyhow::anyhow!("{}", materials::toml_place::describe(file, &text, &e)))?;
+    let stages = value.get("stages").and_then(|s| s.as_array());
+    let parameters = stages
+        .into_iter()
+        .flatten()
+        .filter_map(|s| s.get("parameters"));
+    let mut errors = BTreeMap::new();
+    for p in parameters.filter_map(|p| p.as_array()).flatten() {
+        if let (Some(name), Some(e)) = (
+            p.get("name").and_then(|n| n.as_str()),
+            p.get("std_error").and_then(|e| e.as_float()),
+        ) {
+            errors.insert(name.to_string(), e);
+        }
+    }
+    Ok(errors)
 }
 
 /// Write `report.toml` and one `<experiment>.csv` (measured and fitted) into `dir`.
