@@ -61,6 +61,15 @@ impl VerifyData {
         Some(self.root.join("experiments/fit_945.toml"))
     }
 
+    /// The measured-velocity SHPB scene of 945 test 01, if its record is there.
+    pub fn steel_945_scene(&self) -> Option<PathBuf> {
+        self.shared("shpb/steel_945")?;
+        Some(
+            self.root
+                .join("scenes/shpb/945_test01_measured_velocity.toml"),
+        )
+    }
+
     /// The experiment files of the six 945-steel SHPB records, if the records are there.
     pub fn steel_945(&self) -> Option<Vec<PathBuf>> {
         self.shared("shpb/steel_945")?;

@@ -12,6 +12,7 @@ pub mod materials;
 pub mod mpm;
 pub mod row;
 pub mod shpb;
+pub mod shpb_derivatives;
 pub mod shpb_model;
 
 use data::VerifyData;
@@ -29,7 +30,7 @@ pub struct Inputs<'a> {
 pub type Part = fn(&Inputs) -> anyhow::Result<Vec<Row>>;
 
 /// The catalogue, part by part, in table order.
-pub const CATALOGUE: [(&str, Part); 9] = [
+pub const CATALOGUE: [(&str, Part); 10] = [
     ("materials", materials::rows),
     ("shpb", shpb::rows),
     ("fit", fit::rows),
@@ -37,6 +38,7 @@ pub const CATALOGUE: [(&str, Part); 9] = [
     ("fit-real", fit::real_rows),
     ("mpm", mpm::rows),
     ("shpb-model", shpb_model::rows),
+    ("shpb-derivatives", shpb_derivatives::rows),
     ("cutting", cutting::rows),
     ("cutting-orthogonal", cutting_orthogonal::rows),
 ];

@@ -3,6 +3,7 @@
 //! `tensile`; SHPB specimens, `shpb_specimen`, from the face signals of `shpb_input`) and
 //! the SHPB test as an MPM model (`mpm_shpb`), all behind `model::ExperimentModel`.
 
+pub mod jacobian_check;
 pub mod model;
 pub mod mpm_shpb;
 pub mod shpb_input;
