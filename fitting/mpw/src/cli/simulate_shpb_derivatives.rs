@@ -106,7 +106,7 @@ pub fn run(scene_file: &Path, params: Option<&Path>, free: &[String], out: &Path
     let plateau = scene.plateau_times();
     let mut chart = LineChart::new(
         format!(
-            "{}: sensitivity of the transmitter-face force F2 (exact derivatives; plateau {:.0}-{:.0} µs)",
+            "{}: exact sensitivity of F2 (plateau {:.0}-{:.0} µs)",
             scene.experiment.name,
             plateau.first().copied().unwrap_or(0.0) * 1e6,
             plateau.last().copied().unwrap_or(0.0) * 1e6

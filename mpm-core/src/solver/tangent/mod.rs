@@ -5,9 +5,11 @@
 //!
 //! Each stage's derivative runs just before the stage itself and reads the state the
 //! stage reads (its contract, `Stage::reads`): real parts from the solver, dual parts from
-//! here, through the same generic code as the stage (`linear` weights, `PointShare`,
+//! here, through the same generic code as the stage (the weights, `PointShare`,
 //! `NodeSolve`, `interpolate`, `Kinematics::deformation`, `Deformation::with_viscosity`,
-//! and the material's update in dual arithmetic, `SeededModel`). Its real parts are the
+//! the contact forces and the material's update in dual arithmetic, `SeededModel`). The
+//! part of a derivative that needs the stage's own decisions runs just after it: contact
+//! after its candidate search, the contact loads after the force map has the masses. Its real parts are the
 //! stage's own numbers, so it takes every branch the run takes: the cell that holds a
 //! point, the nodes above the mass cutoff, where a one-sided wall acts, whether a point
 //! yields. What it gives is the derivative of the discrete run at a fixed sequence of
