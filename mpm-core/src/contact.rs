@@ -185,7 +185,7 @@ mod tests {
     #[test]
     fn sliding_point_stays_on_the_friction_cone() {
         // Surface y = 0, body below; point 0.01 deep, attachment 0.1 to the right.
-        let x = Vector2::new(0.0, -0.01);
+        let x = Vector2::<f64>::new(0.0, -0.01);
         let xc = Vector2::new(0.0, 0.0);
         let mut xa = Vector2::new(0.1, 0.0);
         let mu = 0.3;

@@ -321,9 +321,9 @@ mod tests {
             angle: TimeSignal::new(vec![0.0, 1.0], vec![0.0, std::f64::consts::FRAC_PI_2]).unwrap(),
         });
         let pose = b.motion.pose(1.0);
-        let x = pose.to_world(&Vector2::new(1.0, 0.0));
+        let x = pose.to_world(&Vector2::<f64>::new(1.0, 0.0));
         assert!((x - Vector2::new(0.0, 1.0)).norm() < 1e-14);
-        let (d, p) = b.nearest_plane(&pose.to_body(&Vector2::new(0.0, 0.9)));
+        let (d, p) = b.nearest_plane(&pose.to_body(&Vector2::<f64>::new(0.0, 0.9)));
         assert!((d + 0.1).abs() < 1e-14);
         assert!((p.normal - Vector2::new(1.0, 0.0)).norm() < 1e-14);
     }

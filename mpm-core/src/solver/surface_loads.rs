@@ -123,8 +123,8 @@ mod tests {
     fn hat_is_one_at_the_node_and_zero_a_cell_away() {
         let inv_h = Vector2::new(2.0, 4.0);
         assert_eq!(hat_at(&Vector2::<f64>::zeros(), &inv_h), 1.0);
-        assert!((hat_at(&Vector2::new(0.25, 0.125), &inv_h) - 0.25).abs() < 1e-15);
-        assert_eq!(hat_at(&Vector2::new(0.5, 0.0), &inv_h), 0.0);
-        assert_eq!(hat_at(&Vector2::new(0.0, -0.3), &inv_h), 0.0);
+        assert!((hat_at(&Vector2::<f64>::new(0.25, 0.125), &inv_h) - 0.25).abs() < 1e-15);
+        assert_eq!(hat_at(&Vector2::<f64>::new(0.5, 0.0), &inv_h), 0.0);
+        assert_eq!(hat_at(&Vector2::<f64>::new(0.0, -0.3), &inv_h), 0.0);
     }
 }

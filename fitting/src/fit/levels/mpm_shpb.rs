@@ -1,5 +1,5 @@
-//! The axisymmetric MPM model of an SHPB record as an experiment model of the fit (issue
-//! 11, `level = "mpm-axisymmetric"` in a set file): the specimen between the two faces
+//! The axisymmetric MPM model of an SHPB record as an experiment model of the fit
+//! (`level = "mpm-axisymmetric"` in a set file): the specimen between the two faces
 //! with Coulomb friction, barrelling and radial inertia (`crate::shpb_model`), driven as
 //! the single-point level is, by the measured relative face velocity v1 − v2, so the two
 //! levels differ only in what the MPM model adds; or (`drive = "incident-pulse"`) by the
@@ -33,7 +33,9 @@
 //! at the record's end (945 test 01: 80 of 120 µs). A trial whose run fails (a diverged material)
 //! is an error the optimizer treats as a rejected step.
 //!
-//! Jacobian: forward finite differences with the relative step `FD_STEP`, chosen from the
+//! Jacobian (`Jacobian`): the exact derivatives of the window means, carried through one
+//! run (`jacobian = "exact"`, measured-velocity drive), or by default forward finite
+//! differences with the relative step `FD_STEP`, chosen from the
 //! measured noise (945 test 01, 20 layers, linear shape functions, 198 samples, around the
 //! single-point fit):
 //! d(mean F2)/d ln p is the same to 0.3 % from steps of 1e-6 to 3e-2 for A, N and C, but

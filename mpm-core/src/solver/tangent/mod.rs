@@ -9,10 +9,10 @@
 //! `NodeSolve`, `interpolate`, `Kinematics::deformation`, `Deformation::with_viscosity`,
 //! the contact forces and the material's update in dual arithmetic, `SeededModel`). The
 //! part of a derivative that needs the stage's own decisions runs just after it: contact
-//! after its candidate search, the contact loads after the force map has the masses. Its real parts are the
-//! stage's own numbers, so it takes every branch the run takes: the cell that holds a
-//! point, the nodes above the mass cutoff, where a one-sided wall acts, whether a point
-//! yields. What it gives is the derivative of the discrete run at a fixed sequence of
+//! after its candidate search, the contact loads after the force map has the masses. Its
+//! real parts are the stage's own numbers, so it takes every branch the run takes: the
+//! cell that holds a point, the nodes above the mass cutoff, where a one-sided wall acts,
+//! whether a point yields, whether a contact point sticks. What it gives is the derivative of the discrete run at a fixed sequence of
 //! Δt and of those decisions: exact between events, and at an event (first yield, a point
 //! crossing a cell face, a wall letting go) the one-sided derivative of the branch the run
 //! took, where the run itself has a kink.
@@ -72,7 +72,7 @@ pub struct Tangent<const D: usize, const P: usize> {
     /// The weights of this step, evaluated by its first transfer.
     stencils: DualStencils<D, P>,
     /// Attachment point of each point in contact with each rigid body (by body, then
-    /// point index; body frame).
+    /// point index; body frame), real parts the run's as the contact stage left them.
     attachment: Vec<Vec<Option<SVector<Dual<P>, D>>>>,
     /// The contact loads of this step.
     loads: Vec<DualLoad<D, P>>,

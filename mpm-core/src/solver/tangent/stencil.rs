@@ -20,7 +20,7 @@ use materials::scalar::c;
 use materials::tensor::inverse;
 use nalgebra::{Matrix3, SMatrix, SVector};
 
-/// A kernel the derivative pass carries, `None` for one it does not.
+/// A kernel the derivative pass carries.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum SmoothKernel {
     Linear,
@@ -29,6 +29,7 @@ pub(super) enum SmoothKernel {
 }
 
 impl SmoothKernel {
+    /// The pass's form of `kernel`, `None` for one it does not carry.
     pub(super) fn of(kernel: ShapeFunction) -> Option<SmoothKernel> {
         match kernel {
             ShapeFunction::Linear => Some(SmoothKernel::Linear),
