@@ -32,11 +32,8 @@ impl<const D: usize> Solver<D> {
             };
             widest = widest.or(block);
         }
-        if widest.nodes > MAX_STENCIL_NODES || !widest.extent.is_finite() {
-            let cause = Cause::DomainTooLarge {
-                extent: widest.extent,
-            };
-            return Err(self.failure(Some(widest.point), cause));
+        if let Some((point, extent)) = widest.too_large() {
+            return Err(self.failure(Some(point), Cause::DomainTooLarge { extent }));
         }
         let reach = Reach::of(widest.extent);
         self.fit_grid(reach)?;
@@ -113,11 +110,14 @@ impl<const D: usize> Solver<D> {
                 extent: e.max(),
                 point: i,
                 nodes: K::nodes(&e),
+                crowded: i,
+                crowded_extent: e.max(),
             }
         };
         let cut = parallel::light(p.len());
         let start = Widest {
             point: first,
+            crowded: first,
             ..cell
         };
         let with = |a: Widest, i| a.or(of(i));
@@ -126,12 +126,15 @@ impl<const D: usize> Solver<D> {
 }
 
 /// How far the points reach: the largest domain half-extent [cells] (NaN if any is) and
-/// the first point of it, and the most nodes any point reaches.
-#[derive(Debug, Clone, Copy)]
+/// the first point of it; the most nodes any point reaches, the first point that reaches
+/// them and its half-extent.
+#[derive(Debug, Clone, Copy, PartialEq)]
 struct Widest {
     extent: f64,
     point: usize,
     nodes: usize,
+    crowded: usize,
+    crowded_extent: f64,
 }
 
 impl Default for Widest {
@@ -140,25 +143,77 @@ impl Default for Widest {
             extent: 0.0,
             point: 0,
             nodes: 1,
+            crowded: 0,
+            crowded_extent: 0.0,
         }
     }
 }
 
 impl Widest {
-    /// The wider of `self` and `other` (on equal extents, the lower point), with the most
-    /// nodes of both.
+    /// The wider of `self` and `other` (on equal extents, the lower point), with the more
+    /// crowded of both (on equal node counts, the lower point).
     fn or(self, other: Widest) -> Widest {
         let wider = other.extent > self.extent
             || (other.extent == self.extent && other.point < self.point)
             || other.extent.is_nan();
-        let keep = if wider && !self.extent.is_nan() {
+        let widest = if wider && !self.extent.is_nan() {
             other
         } else {
             self
         };
+        let more =
+            other.nodes > self.nodes || (other.nodes == self.nodes && other.crowded < self.crowded);
+        let crowded = if more { other } else { self };
         Widest {
-            nodes: self.nodes.max(other.nodes),
-            ..keep
+            nodes: crowded.nodes,
+            crowded: crowded.crowded,
+            crowded_extent: crowded.crowded_extent,
+            ..widest
         }
+    }
+
+    /// The point whose domain no stencil may hold, and its half-extent [cells]: a
+    /// non-finite domain first, else the point reaching the most nodes if they are more
+    /// than `MAX_STENCIL_NODES` (not always the widest: a domain wide along every axis
+    /// reaches more nodes than one wider along a single axis).
+    fn too_large(&self) -> Option<(usize, f64)> {
+        if !self.extent.is_finite() {
+            Some((self.point, self.extent))
+        } else if self.nodes > MAX_STENCIL_NODES {
+            Some((self.crowded, self.crowded_extent))
+        } else {
+            None
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn reached(point: usize, extent: f64, nodes: usize) -> Widest {
+        Widest {
+            extent,
+            point,
+            nodes,
+            crowded: point,
+            crowded_extent: extent,
+        }
+    }
+
+    /// A 3D uGIMP domain 4.1 cells wide along every axis reaches (⌈8.2⌉ + 2)³ = 1 331
+    /// nodes; one 6 cells wide along x only reaches 14 · 3 · 3 = 126. The error names the
+    /// first, in either order of the points.
+    #[test]
+    fn the_failure_names_the_point_with_too_many_nodes_not_the_widest() {
+        let (cube, needle) = (reached(7, 4.1, 1331), reached(3, 6.0, 126));
+        for both in [cube.or(needle), needle.or(cube)] {
+            assert_eq!((both.extent, both.point, both.nodes), (6.0, 3, 1331));
+            assert_eq!(both.too_large(), Some((7, 4.1)));
+        }
+        let fine = reached(2, 6.0, 126).or(reached(5, 1.0, 27));
+        assert_eq!(fine.too_large(), None);
+        let nan = reached(4, f64::NAN, 9).or(reached(1, 2.0, 2000));
+        assert_eq!(nan.too_large().map(|(p, _)| p), Some(4));
     }
 }

@@ -169,9 +169,7 @@ pub fn steel_945_cases(set_file: &Path) -> Result<Vec<Row>> {
         .collect())
 }
 
-/// All fitting rows for `mpw verify`.
-/// Every fitting row of `mpw verify`.
-/// The synthetic cases: recovery and the AD Jacobian.
+/// The fitting rows of the synthetic set: recovery and the AD Jacobian.
 pub fn rows(inputs: &Inputs) -> Result<Vec<Row>> {
     let data = inputs.data;
     let mut rows = match recovery_cases(&data.default_set()) {
