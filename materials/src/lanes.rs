@@ -1,8 +1,10 @@
 //! Several material points in lockstep. The principal return is written once
 //! for a lane type `L`: `f64` for one point, `F64x4` for four (simba's `WideF64x4`, SIMD
-//! arithmetic over `wide::f64x4`). Branches become lane masks (`select`), and the library
-//! functions (exp, ln, pow) are taken lane by lane from the same `f64` routines, so each
-//! lane of a batch gives the one-point result to the bit, whatever it is grouped with.
+//! arithmetic over `wide::f64x4`: one AVX instruction per operation in the workspace's
+//! x86-64-v3 build, `.cargo/config.toml`; two SSE2 ones on the x86-64 baseline). Branches
+//! become lane masks (`select`), and the library functions (exp, ln, pow) are taken lane
+//! by lane from the same `f64` routines, so each lane of a batch gives the one-point
+//! result to the bit, whatever it is grouped with.
 
 use crate::error::MaterialError;
 use nalgebra::SMatrix;

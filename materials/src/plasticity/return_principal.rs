@@ -13,8 +13,7 @@
 //! The local problem (first guess, 4×4 Newton, flow ratios) is written once for a lane
 //! type (`lanes`): `solve` takes one point, `solve_batch` four in lockstep, with the same
 //! result to the bit. The eigen decomposition and the assembly of Fp⁻¹ and τ stay per
-//! point. A batch of four costs a plastic JC increment in flow 322 ns a point against
-//! 485 ns alone (`mpw bench`, SSE2 build, 2-core EPYC VM).
+//! point. What the batch saves: `mpw bench` ("16 at once") and docs/performance.md.
 
 use crate::error::MaterialError;
 use crate::flow_stress::{LogIncrementPath, Onset};
