@@ -240,6 +240,19 @@ fn penalty_contact_with_friction_derivatives_match_central_differences() {
     check(case, 300);
 }
 
+/// The bar in plane strain on a frictionless rigid half-space (μ = 0): a point in
+/// contact is attached at its projection on the plane every step, so the penalty force
+/// is normal and the points slide freely outwards.
+#[test]
+fn frictionless_penalty_contact_derivatives_match_central_differences() {
+    let case = Case {
+        kernel: ShapeFunction::Cpdi,
+        floor: Floor::Rigid { friction: 0.0 },
+        ..Case::new(Kinematics::PlaneStrain, Scheme::Musl)
+    };
+    check(case, 300);
+}
+
 /// 3D, a 1 mm × 1 mm × 3 mm JC copper block at 150 m/s onto the wall z = 0, tilted by
 /// 20 m/s sideways, with the grid shifted every step (0.5 mm cells, 2×2×2 points per
 /// cell, 120 steps): the derivatives of the top corner's position with respect to A, B
