@@ -89,17 +89,17 @@ impl<const D: usize> Watchdog<D> {
         v: &SVector<f64, D>,
         bounds: Bounds,
     ) -> Option<Cause> {
-        let (speed, reach) = (v.norm(), bounds.reach);
-        if speed > bounds.speed {
+        // squared lengths against squared limits: no square root for a point within them
+        if v.norm_squared() > bounds.speed * bounds.speed {
             return Some(Cause::SpeedLimit {
-                speed,
+                speed: v.norm(),
                 limit: bounds.speed,
             });
         }
-        let distance = (x - x.sup(&self.lo).inf(&self.hi)).norm();
-        (distance > reach).then_some(Cause::Escaped {
-            distance,
-            limit: reach,
+        let outside = x - x.sup(&self.lo).inf(&self.hi);
+        (outside.norm_squared() > bounds.reach * bounds.reach).then(|| Cause::Escaped {
+            distance: outside.norm(),
+            limit: bounds.reach,
         })
     }
 

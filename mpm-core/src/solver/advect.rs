@@ -1,6 +1,7 @@
 //! The last motion stage: x ← x + ṽ Δt, the work of external and body forces on the
 //! grid velocity, and the domain and watchdog checks on every point.
 
+use super::gather::Failure;
 use super::Solver;
 use crate::failure::{Cause, SimulationError};
 use crate::parallel;
@@ -23,28 +24,27 @@ impl<const D: usize> Solver<D> {
             .zip(s.grid_velocity.par_iter())
             .zip(p.velocity.par_iter())
             .enumerate();
-        let check = |(i, ((x, vg), v)): (usize, ((&mut SVector<f64, D>, _), _))| {
-            *x += vg * dt;
+        let cause = |x: &SVector<f64, D>, v| {
             if !x.iter().all(|c| c.is_finite()) {
-                return Some((i, Cause::NonFinite { what: "position" }));
+                return Some(Cause::NonFinite { what: "position" });
             }
             if let Some(cause) = watchdog
                 .zip(bounds)
                 .and_then(|(w, b)| w.check_point(x, v, b))
             {
-                return Some((i, cause));
+                return Some(cause);
             }
-            if let Some((lo, hi)) = domain {
-                if (0..D).any(|k| x[k] < lo[k] || x[k] > hi[k]) {
-                    return Some((
-                        i,
-                        Cause::LeftDomain {
-                            position: x.iter().cloned().collect(),
-                        },
-                    ));
-                }
-            }
-            None
+            let (lo, hi) = domain?;
+            (0..D)
+                .any(|k| x[k] < lo[k] || x[k] > hi[k])
+                .then(|| Cause::LeftDomain {
+                    position: x.iter().cloned().collect(),
+                })
+        };
+        // a failure travels boxed, so the fold's state stays two words wide
+        let check = |(i, ((x, vg), v)): (usize, ((&mut SVector<f64, D>, _), _))| -> Failure {
+            *x += vg * dt;
+            cause(x, v).map(|c| (i, Box::new(c)))
         };
         let failure = parallel::fold(
             points,
@@ -58,7 +58,7 @@ impl<const D: usize> Solver<D> {
             Option::or,
         );
         if let Some((i, cause)) = failure {
-            return Err(self.failure(Some(i), cause));
+            return Err(self.failure(Some(i), *cause));
         }
         let p = &self.particles;
         let power = |i: usize| (s.force[i] + b * p.mass[i]).dot(&s.grid_velocity[i]) * dt;
