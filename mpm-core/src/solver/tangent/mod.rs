@@ -12,10 +12,11 @@
 //! after its candidate search, the contact loads after the force map has the masses. Its
 //! real parts are the stage's own numbers, so it takes every branch the run takes: the
 //! cell that holds a point, the nodes above the mass cutoff, where a one-sided wall acts,
-//! whether a point yields, whether a contact point sticks. What it gives is the derivative of the discrete run at a fixed sequence of
-//! Δt and of those decisions: exact between events, and at an event (first yield, a point
-//! crossing a cell face, a wall letting go) the one-sided derivative of the branch the run
-//! took, where the run itself has a kink.
+//! whether a point yields, whether a contact point sticks. What it gives is the
+//! derivative of the discrete run at a fixed sequence of Δt and of those decisions: exact
+//! between events, and at an event (first yield, a point crossing a cell face, a wall
+//! letting go) the one-sided derivative of the branch the run took, where the run itself
+//! has a kink.
 //!
 //! Cost: one dual update per point and step (the return mapping by the implicit function
 //! theorem: one extra Newton step in dual arithmetic) and the transfers in P + 1 lanes.
