@@ -15,8 +15,12 @@
 //! principal-stretch return). For dual scalars one more Newton step is taken in dual
 //! arithmetic with the converged real Jacobian: x = x* − K⁻¹ r(x*), which is the implicit
 //! function theorem dx/dp = −K⁻¹ ∂r/∂p, so derivatives never pass through the iterations.
+//! Each return takes that step in its own unknowns: the reference return in its ten, the
+//! principal return in its four (`return_principal_dual`, with the rotation of the
+//! eigenbasis carried by the derivative of an isotropic tensor function).
 
 pub mod return_principal;
+mod return_principal_dual;
 pub mod return_reference;
 
 use crate::elastic::Elastic;
@@ -244,17 +248,23 @@ impl<D: Scalar> ElastoPlastic<D> {
             return Trial::Done(Err(MaterialError::InvertedDeformation { det_f: j.re() }));
         }
         let fe_trial = mul(f, &old.fp_inv);
-        let tau_trial = self.tau(&fe_trial, old.theta);
-        // Yielding is decided in real arithmetic (φ^tr is not carried further).
+        // Yielding is decided in real arithmetic (φ^tr is not carried further); dual
+        // scalars carry τ^tr only where it is the result.
+        let tau_trial = (D::NDERIV == 0).then(|| self.tau(&fe_trial, old.theta));
+        let tau_trial_vm = match &tau_trial {
+            Some(tau) => von_mises(tau).re(),
+            None => von_mises(&self.re().tau(&re(&fe_trial), old.theta.re())),
+        };
         let old_re = old.re();
         let flow = self.flow.map(|_, v| v.re());
         let onset = flow.onset(old_re.alpha, old_re.theta, self.thermal.theta0.re());
-        let phi_trial = von_mises(&tau_trial).re() - onset.tau_y0;
+        let phi_trial = tau_trial_vm - onset.tau_y0;
         if phi_trial <= 0.0 {
             let new = State {
                 dalpha: c::<D>(0.0),
                 ..*old
             };
+            let tau_trial = tau_trial.unwrap_or_else(|| self.tau(&fe_trial, old.theta));
             return Trial::Done(Ok((tau_trial * j.recip(), new)));
         }
         Trial::Yields { onset, phi_trial }
@@ -277,8 +287,11 @@ impl<D: Scalar> ElastoPlastic<D> {
             };
             (fp_inv, c::<D>(real.alpha), tau)
         } else {
-            let (fp_inv, alpha) =
-                return_reference::implicit_step(self, f, old, dt, &real.fp_inv, real.alpha)?;
+            let implicit_step = match self.return_map {
+                ReturnMap::Reference => return_reference::implicit_step,
+                ReturnMap::Principal => return_principal_dual::implicit_step,
+            };
+            let (fp_inv, alpha) = implicit_step(self, f, old, dt, &real.fp_inv, real.alpha)?;
             (fp_inv, alpha, self.tau(&mul(f, &fp_inv), old.theta))
         };
         let dalpha = alpha - old.alpha;
