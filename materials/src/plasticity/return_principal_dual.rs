@@ -99,33 +99,44 @@ pub fn implicit_step<D: Scalar>(
     });
     let ratio = Vector3::from_fn(|a, _| (y[a] - eps_trial[a]).exp());
 
-    let lambda_re = lambda.map(|l| l.re());
-    let ratio_re = ratio.map(|m| m.re());
-    let theta = |a: usize, b: usize| {
-        let gap = lambda_re[a] - lambda_re[b];
-        if gap.abs() > COINCIDENT * lambda_re[a].max(lambda_re[b]) {
-            (ratio_re[a] - ratio_re[b]) / gap
-        } else {
-            let slope = |a: usize, b: usize| {
-                let delta = if a == b { 1.0 } else { 0.0 };
-                ratio_re[a] * (k_inv[(a, b)] - delta) / (2.0 * lambda_re[b])
-            };
-            0.5 * (slope(a, a) - slope(a, b) + slope(b, b) - slope(b, a))
-        }
-    };
-    let flow_in_basis = M3::<D>::from_fn(|a, b| {
-        if a == b {
-            ratio[a]
-        } else {
-            (in_basis[(a, b)] - c::<D>(in_basis[(a, b)].re())) * c::<D>(theta(a, b))
-        }
-    });
+    let flow_in_basis = flow_in_eigenbasis(&ratio, &in_basis, &k_inv);
     let flow = mul(&mul(&v, &flow_in_basis), &v.transpose());
     let f_inv = inverse(f).ok_or(MaterialError::InvertedDeformation {
         det_f: re(f).determinant(),
     })?;
     let fp_inv = mul(&mul(&f_inv, &flow), &fe_trial);
     Ok((fp_inv, old.alpha + y[3].exp()))
+}
+
+/// M = exp(−√(3/2) Δα N) in the trial eigenbasis, with its derivatives (step 3 of the
+/// module doc): `ratio` the m_a, `in_basis` Vᵀ b^tr V (diagonal λ_a^tr), `k_inv` K⁻¹.
+fn flow_in_eigenbasis<D: Scalar>(
+    ratio: &Vector3<D>,
+    in_basis: &M3<D>,
+    k_inv: &Matrix4<f64>,
+) -> M3<D> {
+    let lambda = Vector3::from_fn(|a, _| in_basis[(a, a)].re());
+    let m = ratio.map(|m| m.re());
+    let theta = |a: usize, b: usize| {
+        let gap = lambda[a] - lambda[b];
+        if gap.abs() > COINCIDENT * lambda[a].max(lambda[b]) {
+            (m[a] - m[b]) / gap
+        } else {
+            // ∂m_a/∂λ_b, symmetrized over the pair
+            let slope = |a: usize, b: usize| {
+                let delta = if a == b { 1.0 } else { 0.0 };
+                m[a] * (k_inv[(a, b)] - delta) / (2.0 * lambda[b])
+            };
+            0.5 * (slope(a, a) - slope(a, b) + slope(b, b) - slope(b, a))
+        }
+    };
+    M3::<D>::from_fn(|a, b| {
+        if a == b {
+            ratio[a]
+        } else {
+            (in_basis[(a, b)] - c::<D>(in_basis[(a, b)].re())) * c::<D>(theta(a, b))
+        }
+    })
 }
 
 /// K = ∂r/∂y at the real solution, by 4-direction duals.
