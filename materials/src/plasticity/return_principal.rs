@@ -24,7 +24,7 @@ use crate::near_one::{exp_small, ln_near_one};
 use crate::plasticity::ElastoPlastic;
 use crate::sym_eigen::{self, SymEigen};
 use crate::tensor::{adjugate, det, inverse, M3};
-use nalgebra::{Matrix3, SVector, Vector3};
+use nalgebra::{Matrix3, Matrix4, SVector, Vector3};
 use simba::simd::SimdBool;
 
 /// Most scalar Newton steps of the first guess for ln Δα, and the step that ends them.
@@ -132,6 +132,26 @@ impl<'a, L: Lane> Problem<'a, L> {
         };
         (r, jac)
     }
+}
+
+/// K = ∂r/∂y of one point's local problem at `y`, from the hand-derived blocks of
+/// `Problem::eval` (the implicit step of `return_principal_dual`).
+pub(super) fn local_jacobian(
+    m: &ElastoPlastic<f64>,
+    eps_trial: Vector3<f64>,
+    onset: &Onset,
+    dt: f64,
+    y: &SVector<f64, 4>,
+) -> Matrix4<f64> {
+    let (_, k) = Problem::new(m, eps_trial, onset, dt).eval(y);
+    let mut jacobian = Matrix4::zeros();
+    jacobian.fixed_view_mut::<3, 3>(0, 0).copy_from(&k.a);
+    jacobian.fixed_view_mut::<3, 1>(0, 3).copy_from(&k.c);
+    jacobian
+        .fixed_view_mut::<1, 3>(3, 0)
+        .copy_from(&k.d.transpose());
+    jacobian[(3, 3)] = k.e;
+    jacobian
 }
 
 /// A converged return: Fp⁻¹, α and the Kirchhoff stress τ [Pa] at θ_n.

@@ -7,7 +7,8 @@
 //!    eigenvalues λ_a^tr = (Vᵀ b^tr V)_aa carry their exact first derivatives (a
 //!    symmetric matrix's eigenvalue moves by v_aᵀ db v_a), and ε_a^tr = ½ ln λ_a^tr.
 //! 2. One Newton step in dual arithmetic from the converged real y*: y = y* − K⁻¹ r(y*),
-//!    K = ∂r/∂y real, r with dual ε^tr and parameters, so dy = −K⁻¹ ∂r/∂(ε^tr, p) d(ε^tr, p).
+//!    K = ∂r/∂y real (`return_principal`'s hand Jacobian), r with dual ε^tr and
+//!    parameters, so dy = −K⁻¹ ∂r/∂(ε^tr, p) d(ε^tr, p).
 //! 3. The flow tensor M = exp(−√(3/2) Δα N) = Σ_a m_a v_a v_aᵀ, m_a = exp(ε_a − ε_a^tr), is
 //!    an isotropic function of b^tr; its derivative in the eigenbasis (Miehe's formula for
 //!    isotropic tensor functions) is dm_a on the diagonal and
@@ -24,12 +25,11 @@
 
 use crate::error::MaterialError;
 use crate::material::State;
-use crate::plasticity::ElastoPlastic;
+use crate::plasticity::{return_principal, ElastoPlastic};
 use crate::scalar::{c, Scalar};
 use crate::sym_eigen;
 use crate::tensor::{inverse, lift, mul, re, M3};
 use nalgebra::{Matrix4, SVector, Vector3};
-use num_dual::{jacobian, DualSVec64};
 
 /// Relative gap of two trial eigenvalues below which Θ_ab takes its limit.
 const COINCIDENT: f64 = 1e-8;
@@ -88,7 +88,11 @@ pub fn implicit_step<D: Scalar>(
         0.5 * b[(2, 2)].ln(),
         (alpha - old_re.alpha).ln(),
     );
-    let k_inv = real_jacobian(&m_re, &y_real, &eps_trial.map(|e| e.re()), &old_re, dt)
+    let onset = m_re
+        .flow
+        .onset(old_re.alpha, old_re.theta, m_re.thermal.theta0);
+    let eps_trial_re = eps_trial.map(|e| e.re());
+    let k_inv = return_principal::local_jacobian(&m_re, eps_trial_re, &onset, dt, &y_real)
         .try_inverse()
         .ok_or(MaterialError::Singular {
             what: "principal return (implicit step)",
@@ -137,21 +141,6 @@ fn flow_in_eigenbasis<D: Scalar>(
             (in_basis[(a, b)] - c::<D>(in_basis[(a, b)].re())) * c::<D>(theta(a, b))
         }
     })
-}
-
-/// K = ∂r/∂y at the real solution, by 4-direction duals.
-fn real_jacobian(
-    m: &ElastoPlastic<f64>,
-    y: &SVector<f64, 4>,
-    eps_trial: &Vector3<f64>,
-    old: &State<f64>,
-    dt: f64,
-) -> Matrix4<f64> {
-    type D4 = DualSVec64<4>;
-    let m_d: ElastoPlastic<D4> = m.lift();
-    let eps_d = eps_trial.map(c::<D4>);
-    let old_d = old.map(c::<D4>);
-    jacobian(|yd| residual(&m_d, &yd, &eps_d, &old_d, dt), y).1
 }
 
 #[cfg(test)]
