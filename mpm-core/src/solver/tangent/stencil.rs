@@ -17,7 +17,6 @@ use crate::grid::{floor_i64, Grid};
 use crate::shape::domain::{Deformed, Follow, Stretched};
 use crate::shape::{corners, linear, ShapeFunction};
 use materials::scalar::c;
-use materials::tensor::inverse;
 use nalgebra::{Matrix3, SMatrix, SVector};
 
 /// A kernel the derivative pass carries.
@@ -164,27 +163,8 @@ fn edges_and_inverse<M: Follow, const D: usize, const P: usize>(
         return None;
     }
     let r = M::edges(half, f);
-    if D == 2 {
-        // the closed 2 × 2 inverse: R⁻ᵀ = [[r11, −r10], [−r01, r00]] / det R
-        let det = r[(0, 0)] * r[(1, 1)] - r[(0, 1)] * r[(1, 0)];
-        if det.re == 0.0 || !det.re.is_finite() {
-            return None;
-        }
-        let det_inv = Dual::from_re(1.0) / det;
-        let cofactor = |i: usize, j: usize| {
-            let minor = r[(1 - i, 1 - j)];
-            if i == j {
-                minor * det_inv
-            } else {
-                -minor * det_inv
-            }
-        };
-        return Some((r, SMatrix::from_fn(cofactor)));
-    }
-    let mut r3 = Matrix3::<Dual<P>>::identity();
-    r3.view_mut((0, 0), (D, D)).copy_from(&r);
-    let inv = inverse(&r3)?;
-    Some((r, inv.fixed_view::<D, D>(0, 0).transpose()))
+    let inv = r.try_inverse()?;
+    Some((r, inv.transpose()))
 }
 
 /// The linear weights of a cell's 2ᴰ corners at local coordinates `xi` (x fastest).
