@@ -87,9 +87,15 @@ impl OrthogonalResult {
     /// before.
     pub fn steady_force(&self) -> Option<[f64; 2]> {
         Some([
-            mean(self.steady(&self.filtered_x))?,
-            mean(self.steady(&self.filtered_y))?,
+            self.steady_mean(&self.filtered_x)?,
+            self.steady_mean(&self.filtered_y)?,
         ])
+    }
+
+    /// Mean of `series`, one value per history row, from `STEADY_FROM` on; `None` for a
+    /// run that ended before.
+    pub fn steady_mean(&self, series: &[f64]) -> Option<f64> {
+        mean(self.steady(series))
     }
 
     /// Root mean square of raw minus filtered f_x from `STEADY_FROM` on [N/m]: the noise

@@ -1,5 +1,7 @@
 //! What a cutting run leaves: the tool's contact force per unit thickness against time (read
-//! from the run's history, columns `time_s` and `<tool>_force_<axis>_n_per_m`), and how far
+//! from the run's history, columns `time_s` and `<tool>_force_<axis>_n_per_m`), with exact
+//! derivatives its sensitivities p ∂f/∂p to each parameter p (`derivatives.csv`, columns
+//! `<tool>_force_<axis>_<p>_n_per_m`, `mpm_core::derivative_history`), and how far
 //! the run got (`RunRecord`, the run folder's `run.toml`). The force on the tool is the
 //! reaction of the workpiece: a punch pressing down feels f_y > 0.
 
@@ -19,6 +21,17 @@ pub struct ToolForce {
 impl ToolForce {
     /// Read `tool`'s force from a plane-strain run's `history.csv`.
     pub fn read(history: &Path, tool: &str) -> Result<ToolForce> {
+        Self::read_columns(history, tool, "")
+    }
+
+    /// Read the sensitivity p ∂f/∂p [N/m] of `tool`'s force to `parameter` from a
+    /// plane-strain run's `derivatives.csv`.
+    pub fn read_sensitivity(derivatives: &Path, tool: &str, parameter: &str) -> Result<ToolForce> {
+        Self::read_columns(derivatives, tool, &format!("_{parameter}"))
+    }
+
+    /// Read the columns `<tool>_force_<axis><infix>_n_per_m` of a CSV file.
+    fn read_columns(history: &Path, tool: &str, infix: &str) -> Result<ToolForce> {
         let mut reader = csv::Reader::from_path(history)
             .with_context(|| format!("{}: cannot read the run's history", history.display()))?;
         let header = reader.headers()?.clone();
@@ -32,8 +45,8 @@ impl ToolForce {
         };
         let (t, fx, fy) = (
             col("time_s")?,
-            col(&format!("{tool}_force_x_n_per_m"))?,
-            col(&format!("{tool}_force_y_n_per_m"))?,
+            col(&format!("{tool}_force_x{infix}_n_per_m"))?,
+            col(&format!("{tool}_force_y{infix}_n_per_m"))?,
         );
         let mut out = ToolForce::default();
         for (k, row) in reader.records().enumerate() {

@@ -22,11 +22,14 @@ pub struct RunOptions {
     pub snapshots: usize,
     /// The material file, as the scene names it (relative to the scene's folder).
     pub material_file: String,
+    /// Material parameters to carry exact derivatives along (scene key
+    /// `output.derivatives`; none: a plain run).
+    pub derivatives: Vec<String>,
 }
 
 impl RunOptions {
     /// Linear shape functions, the solver's time step at safety 0.5, seed 1, a history
-    /// row every 10 steps, 12 snapshots, with `material_file`.
+    /// row every 10 steps, 12 snapshots, with `material_file`, no derivatives.
     pub fn new(material_file: impl Into<String>) -> Self {
         RunOptions {
             shape_function: "linear".into(),
@@ -36,6 +39,7 @@ impl RunOptions {
             history_every: 10,
             snapshots: 12,
             material_file: material_file.into(),
+            derivatives: Vec::new(),
         }
     }
 }
@@ -103,7 +107,7 @@ pub fn scene(
         output: OutputSpec {
             history_every: options.history_every,
             snapshots: options.snapshots,
-            derivatives: Vec::new(),
+            derivatives: options.derivatives.clone(),
         },
     }
 }

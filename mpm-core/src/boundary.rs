@@ -22,7 +22,7 @@
 
 use crate::particles::Particles;
 use materials::signal::TimeSignal;
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
 
 /// A condition on material points that acts through forces on them at t_n [N]
 /// (plane strain: per metre; axisymmetric: per radian of the ring, as the points' mass).
@@ -34,6 +34,11 @@ pub trait PointCondition<const D: usize>: Send + Sync {
     /// The largest stiffness with which it ties a point [N/m] (0: none), for the time
     /// step's spring limit on the lightest point (module `solver::time_step`).
     fn stiffness(&self) -> f64;
+    /// ∂f_i/∂x_i [N/m] for each point i it acts on, when its force on a point depends on
+    /// that point's position alone, the same way at every t; `None` otherwise. The
+    /// derivative pass (`solver::Tangent`) carries a condition through this matrix and
+    /// refuses one without it.
+    fn position_jacobian(&self) -> Option<Vec<(usize, SMatrix<f64, D, D>)>>;
 }
 
 /// A set of grid nodes chosen by their position.
@@ -225,6 +230,17 @@ impl<const D: usize> PointCondition<D> for SpringBc<D> {
 
     fn stiffness(&self) -> f64 {
         self.stiffness
+    }
+
+    fn position_jacobian(&self) -> Option<Vec<(usize, SMatrix<f64, D, D>)>> {
+        let k = SMatrix::from_fn(|i, j| {
+            if i == j && self.directions[i] {
+                -self.stiffness
+            } else {
+                0.0
+            }
+        });
+        Some(self.particles.iter().map(|&i| (i, k)).collect())
     }
 }
 

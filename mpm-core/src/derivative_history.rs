@@ -1,16 +1,20 @@
 //! A scene run with exact parameter derivatives (`solver::Tangent`, scene key
 //! `output.derivatives`): each step carries the derivatives along, and every
-//! `history_every` steps the control points' sensitivities p ∂x/∂p [m] (the derivative
-//! times the parameter's value: how far a point moves per unit relative change of the
-//! parameter) go to `derivatives.csv`, one column per point, axis and parameter,
-//! `{point}_{axis}_{parameter}_m`. Up to `MAX_PARAMETERS` parameters, each a parameter of
+//! `history_every` steps the sensitivities p ∂q/∂p (the derivative times the parameter's
+//! value: how much q changes per unit relative change of the parameter) go to
+//! `derivatives.csv`: of each rigid body's contact force [N, plane strain N/m], columns
+//! `{body}_force_{axis}_{parameter}_n` as in the history, then of each control point's
+//! position [m], `{point}_{axis}_{parameter}_m`. Up to `MAX_PARAMETERS` parameters, each a parameter of
 //! at least one body's model (the bodies without it do not depend on it).
 
-use crate::output::AXES;
+use crate::output::{force_unit, AXES};
 use crate::solver::{RunError, Solver, Tangent, Unsupported};
 use materials::ad::eps;
-use materials::seeded::{for_directions, seeded_where_present, ForDirections, MAX_DIRECTIONS};
+use materials::seeded::{
+    for_directions, seeded_where_present, Dual, ForDirections, MAX_DIRECTIONS,
+};
 use materials::{AnyModel, Model};
+use nalgebra::SVector;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
@@ -119,6 +123,17 @@ impl Writer {
     ) -> io::Result<Self> {
         let mut out = BufWriter::new(File::create(path)?);
         let mut cols = vec!["time_s".to_string()];
+        let unit = force_unit(solver.settings.kinematics);
+        for r in &solver.rigid {
+            for axis in &AXES[..D] {
+                let body = &r.body.name;
+                cols.extend(
+                    names
+                        .iter()
+                        .map(|n| format!("{body}_force_{axis}_{n}_{unit}")),
+                );
+            }
+        }
         for (point, _) in &solver.control_points {
             for axis in &AXES[..D] {
                 cols.extend(names.iter().map(|n| format!("{point}_{axis}_{n}_m")));
@@ -134,12 +149,17 @@ impl Writer {
         tangent: &Tangent<D, P>,
     ) -> io::Result<()> {
         let mut row = vec![format!("{:e}", solver.time)];
-        for &(_, i) in &solver.control_points {
-            let x = tangent.position(solver, i);
-            for c in x.iter() {
+        let mut push = |q: &SVector<Dual<P>, D>| {
+            for c in q.iter() {
                 let d = eps(c);
                 row.extend((0..P).map(|k| format!("{:e}", d[k] * self.scales[k])));
             }
+        };
+        for body in 0..solver.rigid.len() {
+            push(&tangent.contact_force(solver, body));
+        }
+        for &(_, i) in &solver.control_points {
+            push(&tangent.position(solver, i));
         }
         writeln!(self.out, "{}", row.join(","))?;
         self.out.flush()

@@ -48,6 +48,11 @@ impl Units {
     }
 }
 
+/// The unit suffix of a force column: `n_per_m` in plane strain, `n` otherwise.
+pub fn force_unit(kinematics: Kinematics) -> &'static str {
+    Units::of(kinematics).force
+}
+
 /// Streams one history row per observed step (wrap it in `observer::Every` to thin it);
 /// flushed every row so a failed run keeps its history. Column names end in their units,
 /// e.g. `kinetic_j`, `platen_force_z_n`.

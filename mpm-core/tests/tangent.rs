@@ -19,7 +19,7 @@ use mpm_core::discretize::{fill, Geometry};
 use mpm_core::kinematics::Kinematics;
 use mpm_core::shape::ShapeFunction;
 use mpm_core::solver::{Scheme, Settings, Solver, Tangent};
-use mpm_core::{RigidBody, VelocityBc};
+use mpm_core::{RigidBody, SpringBc, VelocityBc};
 use nalgebra::Vector2;
 use std::sync::Arc;
 
@@ -33,12 +33,15 @@ fn copper() -> ElastoPlastic {
     .unwrap()
 }
 
-/// What the bar lands on: a one-sided wall (a velocity condition on the grid) or a rigid
-/// half-space with penalty contact and Coulomb friction μ.
+/// What the bar lands on: a one-sided wall (a velocity condition on the grid), a rigid
+/// half-space with penalty contact and Coulomb friction μ, or nothing: its bottom layer
+/// of points is tied to where it started by springs of stiffness κ [N/m per m] along x
+/// and y (eq. 12.1, as the cutting workpiece's base).
 #[derive(Debug, Clone, Copy)]
 enum Floor {
     Wall,
     Rigid { friction: f64 },
+    Springs { stiffness: f64 },
 }
 
 /// How a check runs: kinematics, scheme, shape functions and floor.
@@ -92,6 +95,15 @@ fn bar(model: &ElastoPlastic, case: Case) -> Solver<2> {
             );
             floor.penalty_per_mass = true;
             s.add_rigid_body(floor);
+        }
+        Floor::Springs { stiffness } => {
+            let x0 = &s.particles.reference_position;
+            let bottom = (0..x0.len()).filter(|&i| x0[i][1] < h / 2.0).collect();
+            s.add_condition(Arc::new(SpringBc {
+                particles: bottom,
+                directions: [true, true],
+                stiffness,
+            }));
         }
     }
     s.initialize();
@@ -249,6 +261,18 @@ fn frictionless_penalty_contact_derivatives_match_central_differences() {
         kernel: ShapeFunction::Cpdi,
         floor: Floor::Rigid { friction: 0.0 },
         ..Case::new(Kinematics::PlaneStrain, Scheme::Musl)
+    };
+    check(case, 300);
+}
+
+/// Plane strain USF, the bar's bottom layer held by springs (κ = 2e11 N/m per m, a
+/// point's mass times (c / (h/2))²): the spring forces change with the positions they
+/// hold, df = −κ dx.
+#[test]
+fn spring_condition_derivatives_match_central_differences() {
+    let case = Case {
+        floor: Floor::Springs { stiffness: 2e11 },
+        ..Case::new(Kinematics::PlaneStrain, Scheme::Usf)
     };
     check(case, 300);
 }

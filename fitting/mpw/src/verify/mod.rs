@@ -5,6 +5,7 @@
 //! registered once in `CATALOGUE`; `table` runs them in that order.
 
 pub mod cutting;
+pub mod cutting_derivatives;
 pub mod cutting_orthogonal;
 pub mod data;
 pub mod fit;
@@ -30,7 +31,7 @@ pub struct Inputs<'a> {
 pub type Part = fn(&Inputs) -> anyhow::Result<Vec<Row>>;
 
 /// The catalogue, part by part, in table order.
-pub const CATALOGUE: [(&str, Part); 10] = [
+pub const CATALOGUE: [(&str, Part); 11] = [
     ("materials", materials::rows),
     ("shpb", shpb::rows),
     ("fit", fit::rows),
@@ -41,6 +42,7 @@ pub const CATALOGUE: [(&str, Part); 10] = [
     ("shpb-derivatives", shpb_derivatives::rows),
     ("cutting", cutting::rows),
     ("cutting-orthogonal", cutting_orthogonal::rows),
+    ("cutting-derivatives", cutting_derivatives::rows),
 ];
 
 /// Every row of the catalogue; a part that cannot run, or two rows of one name (two

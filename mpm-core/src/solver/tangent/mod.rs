@@ -23,10 +23,12 @@
 //! Memory: (P + 1) numbers for each real one of the state; no tape.
 //!
 //! Carried: linear, CPDI and cpGIMP weights (module `stencil`), penalty contact with
-//! rigid bodies of prescribed motion (module `contact`). Held fixed, and so refused as
+//! rigid bodies of prescribed motion (module `contact`), point conditions whose force on a
+//! point depends on its position alone (springs: df = (∂f/∂x) dx, with ∂f/∂x from
+//! `PointCondition::position_jacobian`). Held fixed, and so refused as
 //! free parameters: anything that changes ρ0 (the masses) or the wave speed (Δt). Not
 //! carried yet, and refused with the reason: the GIMP kernels and hexahedral CPDI, faces
-//! on elastic bars, and point conditions (springs).
+//! on elastic bars, and other point conditions.
 
 mod contact;
 mod stencil;
@@ -79,6 +81,31 @@ pub struct Tangent<const D: usize, const P: usize> {
     loads: Vec<DualLoad<D, P>>,
     /// Each rigid body's total contact force of this step.
     contact_force: Vec<SVector<Dual<P>, D>>,
+    /// ∂f/∂x of the point conditions' forces on each point, summed over the conditions
+    /// (by point index; empty without conditions).
+    condition_stiffness: Vec<SMatrix<f64, D, D>>,
+}
+
+/// ∂f/∂x of the point conditions' forces on each point, or why a condition is not carried.
+fn condition_stiffness<const D: usize>(
+    solver: &Solver<D>,
+) -> Result<Vec<SMatrix<f64, D, D>>, String> {
+    if solver.conditions.is_empty() {
+        return Ok(Vec::new());
+    }
+    let mut k = vec![SMatrix::zeros(); solver.particles.len()];
+    for condition in &solver.conditions {
+        let Some(jacobian) = condition.position_jacobian() else {
+            return Err(format!(
+                "the point condition `{}` does not say how its forces change with the positions",
+                condition.describe()
+            ));
+        };
+        for (i, dfdx) in jacobian {
+            k[i] += dfdx;
+        }
+    }
+    Ok(k)
 }
 
 /// `re` with the derivatives of `d`.
@@ -164,10 +191,11 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                 rc.body.name
             ));
         }
-        if !solver.conditions.is_empty() {
-            return refuse("point conditions (springs) are not carried".into());
-        }
         let n = solver.particles.len();
+        let condition_stiffness = match condition_stiffness(solver) {
+            Ok(k) => k,
+            Err(why) => return refuse(why),
+        };
         let zero = SVector::zeros();
         let mut state = Vec::with_capacity(n);
         for (block, model) in solver.blocks.iter().zip(&models) {
@@ -191,6 +219,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             attachment: vec![vec![None; n]; solver.rigid.len()],
             loads: Vec::new(),
             contact_force: vec![SVector::zeros(); solver.rigid.len()],
+            condition_stiffness,
         })
     }
 
@@ -282,7 +311,10 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
         let p = &s.particles;
         for i in 0..p.len() {
             let x = self.position(s, i);
-            let external = (s.scratch.force[i] + s.settings.body_force * p.mass[i]).map(c);
+            let mut external = (s.scratch.force[i] + s.settings.body_force * p.mass[i]).map(c);
+            if let Some(k) = self.condition_stiffness.get(i) {
+                external += k.map(c) * self.position[i].map(|x| Dual::new(0.0, x.eps));
+            }
             let share = PointShare::new(
                 p.mass[i],
                 &self.velocity(s, i),

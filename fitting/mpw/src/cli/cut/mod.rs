@@ -8,7 +8,9 @@
 //!   Savitzky-Golay filtered (31 history samples, first order; `force.csv`, `force.png`),
 //!   the shear angle in each snapshot from 20 µs on (from the chip's flow, and the
 //!   strain-rate band with its contrast), the steady cutting force against Merchant's
-//!   estimate from the mean angle, and a picture of the chip (`chip.png`).
+//!   estimate from the mean angle, and a picture of the chip (`chip.png`); with
+//!   `--derivatives A,B,N,C,M` also the forces' sensitivities to those parameters from
+//!   exact derivatives (`force_sensitivity.csv`, `force_sensitivity.png`).
 //! - `mpw cut map [--cut orthogonal]`: the stability map: one run per grid spacing ×
 //!   points over the height, for each variant (shape function, grid shift), the feed (or
 //!   time) reached and the wall time in each cell, for the orthogonal cut with its steady
@@ -27,6 +29,7 @@ mod map;
 mod orthogonal;
 mod pictures;
 mod repeat;
+mod sensitivity;
 mod vertical;
 
 pub use map::MapArgs;

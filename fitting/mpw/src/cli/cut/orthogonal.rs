@@ -1,12 +1,14 @@
 //! `mpw cut orthogonal`: forces, shear angle, Merchant's estimate, chip.
 
 use super::pictures::{field_picture, force_range, with_peak};
+use super::sensitivity::force_sensitivity;
 use super::{orthogonal_scene_text, same_scene, Common, CutRun};
 use crate::charts::{LineChart, Series};
 use anyhow::{Context, Result};
 use cutting::orthogonal::{OrthogonalCut, Resolution};
 use cutting::orthogonal_result::{AngleSample, OrthogonalResult, STEADY_FROM};
 use cutting::record::ToolForce;
+use cutting::workpiece::RunOptions;
 use materials::plasticity::ElastoPlastic;
 use std::path::{Path, PathBuf};
 
@@ -34,6 +36,12 @@ pub struct OrthogonalArgs {
     /// of running it again: forces, shear angles, Merchant, chip picture.
     #[arg(long)]
     pub analyse_only: bool,
+    /// Also carry exact derivatives along these material parameters (e.g. A,B,N,C,M; at
+    /// most 6): the tool forces' sensitivities p ∂f/∂p, filtered as the forces, to
+    /// force_sensitivity.csv and force_sensitivity.png, with their steady means. About
+    /// ten times the plain run's cost.
+    #[arg(long, value_delimiter = ',')]
+    pub derivatives: Vec<String>,
     #[command(flatten)]
     pub common: Common,
 }
@@ -62,7 +70,10 @@ pub fn orthogonal(args: OrthogonalArgs) -> Result<()> {
     }
     let out = (args.common.out.clone())
         .unwrap_or_else(|| Path::new("out").join(format!("cut_orthogonal_{name}")));
-    let options = args.common.options(&args.material)?;
+    let options = RunOptions {
+        derivatives: args.derivatives.clone(),
+        ..args.common.options(&args.material)?
+    };
     let text = orthogonal_scene_text(&cut, &resolution, &options)?;
     match args.analyse_only {
         false => {
@@ -97,6 +108,10 @@ pub fn orthogonal(args: OrthogonalArgs) -> Result<()> {
     print_angles(&result.angles);
     let material = materials::load_elasto_plastic(&args.material)?;
     print_steady(&result, &cut, &material);
+    if !args.derivatives.is_empty() {
+        let title = format!("orthogonal cut {name}");
+        force_sensitivity(&out, &args.derivatives, &result, &title)?;
+    }
     field_picture(&out, "chip.png", &format!("orthogonal cut {name}"))?;
     println!(
         "force.csv, force.png, chip.png, history and snapshots in {}",
