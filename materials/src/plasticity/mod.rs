@@ -156,10 +156,12 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
             ReturnMap::Reference => {
                 // Perfectly plastic estimate of Δα (radial return with 3G) as the first guess.
                 let dalpha0 = phi_trial / (3.0 * model.elastic.shear_modulus());
-                let (fp_inv, alpha) = return_reference::solve(&model, &f_re, &old_re, dt, dalpha0)?;
+                let (fp_inv, dalpha) =
+                    return_reference::solve(&model, &f_re, &old_re, dt, dalpha0)?;
                 RealReturn {
                     fp_inv,
-                    alpha,
+                    alpha: old_re.alpha + dalpha,
+                    dalpha,
                     tau: None,
                 }
             }
@@ -210,6 +212,9 @@ enum Trial<D> {
 struct RealReturn {
     fp_inv: M3<f64>,
     alpha: f64,
+    /// Δα as solved (α − α_n loses it below the last digit of α_n, and the implicit
+    /// step needs ln Δα).
+    dalpha: f64,
     tau: Option<M3<f64>>,
 }
 
@@ -218,6 +223,7 @@ impl From<return_principal::Returned> for RealReturn {
         RealReturn {
             fp_inv: r.fp_inv,
             alpha: r.alpha,
+            dalpha: r.dalpha,
             tau: Some(r.tau),
         }
     }
@@ -291,7 +297,7 @@ impl<D: Scalar> ElastoPlastic<D> {
                 ReturnMap::Reference => return_reference::implicit_step,
                 ReturnMap::Principal => return_principal_dual::implicit_step,
             };
-            let (fp_inv, alpha) = implicit_step(self, f, old, dt, &real.fp_inv, real.alpha)?;
+            let (fp_inv, alpha) = implicit_step(self, f, old, dt, &real.fp_inv, real.dalpha)?;
             (fp_inv, alpha, self.tau(&mul(f, &fp_inv), old.theta))
         };
         let dalpha = alpha - old.alpha;

@@ -159,6 +159,8 @@ pub(super) fn local_jacobian(
 pub struct Returned {
     pub fp_inv: M3<f64>,
     pub alpha: f64,
+    /// Δα as solved: α − α_n loses it where it falls below the last digit of α_n.
+    pub dalpha: f64,
     pub tau: M3<f64>,
 }
 
@@ -343,6 +345,7 @@ fn assemble(
     Ok(Returned {
         fp_inv: f_inv * flow * local.fe_trial,
         alpha: old.alpha + local.dalpha,
+        dalpha: local.dalpha,
         tau: local.eigen.with_values(&tau_a),
     })
 }

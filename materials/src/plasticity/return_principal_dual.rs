@@ -61,7 +61,7 @@ fn residual<E: Scalar>(
     )
 }
 
-/// Fp⁻¹ and α with their derivatives, from the real return (`fp_inv`, `alpha`) of the
+/// Fp⁻¹ and α with their derivatives, from the real return (`fp_inv`, `dalpha` = Δα) of the
 /// same F and old state.
 pub fn implicit_step<D: Scalar>(
     m: &ElastoPlastic<D>,
@@ -69,7 +69,7 @@ pub fn implicit_step<D: Scalar>(
     old: &State<D>,
     dt: f64,
     fp_inv: &M3<f64>,
-    alpha: f64,
+    dalpha: f64,
 ) -> Result<(M3<D>, D), MaterialError> {
     let fe_trial = mul(f, &old.fp_inv);
     let b_trial = mul(&fe_trial, &fe_trial.transpose());
@@ -86,7 +86,7 @@ pub fn implicit_step<D: Scalar>(
         0.5 * b[(0, 0)].ln(),
         0.5 * b[(1, 1)].ln(),
         0.5 * b[(2, 2)].ln(),
-        (alpha - old_re.alpha).ln(),
+        dalpha.ln(),
     );
     let onset = m_re
         .flow
@@ -255,6 +255,53 @@ mod tests {
             let error = worst(&outputs(&s_r, &new_r), &outputs(&s_p, &new_p));
             // round-off ~1e-12; the quotient or limit of Θ near `COINCIDENT` ~1e-8
             assert!(error < 1e-7, "{name}: relative derivative gap {error:e}");
+        }
+    }
+
+    /// A step that yields by so little that α_n + Δα rounds to α_n (the yield onset
+    /// found by bisection on the step's size): the implicit step takes ln Δα from the
+    /// return itself, so the derivatives stay finite (from α − α_n they were ln 0).
+    #[test]
+    fn a_step_that_yields_below_the_last_digit_of_alpha_keeps_finite_derivatives() {
+        let prestrain = M3::new(0.99, 0.004, 0.0, 0.0, 1.004, 0.0, 0.0, 0.0, 1.006);
+        // α_n = 1000, whose last digit (1.1e-13) lies far above Δα at the onset of flow
+        let old = State {
+            alpha: 1e3,
+            ..prestrained(&prestrain)
+        };
+        let model = steel(ReturnMap::Principal);
+        // F whose trial Fe = F Fp_n⁻¹ is I + s (Fe_0 − I), Fe_0 the prestrain's
+        let fe = prestrain * old.fp_inv;
+        let fp = old.fp_inv.try_inverse().unwrap();
+        let at = |s: f64| (M3::identity() + (fe - M3::identity()) * s) * fp;
+        let yields = |s: f64| {
+            matches!(
+                model.trial(&at(s), &old),
+                super::super::Trial::Yields { .. }
+            )
+        };
+        let (mut elastic, mut plastic) = (0.0, 10.0);
+        assert!(!yields(elastic) && yields(plastic));
+        for _ in 0..200 {
+            let mid = 0.5 * (elastic + plastic);
+            if mid == elastic || mid == plastic {
+                break;
+            }
+            match yields(mid) {
+                true => plastic = mid,
+                false => elastic = mid,
+            }
+        }
+        let (sigma, state) = seeded_update(ReturnMap::Principal, &at(plastic), &old);
+        assert_eq!(
+            state.alpha.re, old.alpha,
+            "Δα lies below the last digit of α_n"
+        );
+        for x in outputs(&sigma, &state) {
+            assert!(
+                eps(&x).iter().all(|d| d.is_finite()),
+                "a derivative is not finite: {x:?}"
+            );
         }
     }
 }

@@ -72,7 +72,7 @@ fn residual_and_jacobian(
 }
 
 /// Solve the local problem in real arithmetic from the first guess `dalpha0` > 0;
-/// returns (Fp⁻¹, α).
+/// returns (Fp⁻¹, Δα).
 pub fn solve(
     m: &ElastoPlastic<f64>,
     f: &M3<f64>,
@@ -83,7 +83,7 @@ pub fn solve(
     let x0 = pack(&old.fp_inv, dalpha0.ln());
     let x = local_newton::solve(|x| residual_and_jacobian(m, x, f, old, dt), x0)?;
     let (fp_inv, ln_dalpha) = unpack(&x);
-    Ok((fp_inv, old.alpha + ln_dalpha.exp()))
+    Ok((fp_inv, ln_dalpha.exp()))
 }
 
 /// One Newton step in the scalar type `D` from the converged real solution: the real
@@ -95,9 +95,9 @@ pub fn implicit_step<D: Scalar>(
     old: &State<D>,
     dt: f64,
     fp_inv: &M3<f64>,
-    alpha: f64,
+    dalpha: f64,
 ) -> Result<(M3<D>, D), MaterialError> {
-    let x = pack(fp_inv, (alpha - old.alpha.re()).ln());
+    let x = pack(fp_inv, dalpha.ln());
     let (_, k) = residual_and_jacobian(&m.re(), &x, &crate::tensor::re(f), &old.re(), dt);
     let k_inv = k.try_inverse().ok_or(MaterialError::Singular {
         what: "return mapping (implicit step)",
