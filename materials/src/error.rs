@@ -12,6 +12,4 @@ pub enum MaterialError {
     NonFinite { what: &'static str },
     #[error("singular local Jacobian in {what}")]
     Singular { what: &'static str },
-    #[error("the point is at or above its melting temperature (θ = {theta} K): its flow stress is zero and derivatives through its return are not defined")]
-    MoltenDerivatives { theta: f64 },
 }

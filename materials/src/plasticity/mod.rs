@@ -143,12 +143,10 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
         };
         let (model, old_re, f_re) = (self.re(), old.re(), re(f));
         if onset.is_molten() {
-            if D::NDERIV > 0 {
-                return Err(MaterialError::MoltenDerivatives {
-                    theta: old_re.theta,
-                });
-            }
-            let real = return_principal::molten(&model, &f_re, &old_re)?.into();
+            let real = RealReturn {
+                molten: true,
+                ..return_principal::molten(&model, &f_re, &old_re)?.into()
+            };
             return self.after_return(f, dt, old, real);
         }
         // (Fp⁻¹, α) in real arithmetic, and τ where the return gives it.
@@ -163,6 +161,7 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
                     alpha: old_re.alpha + dalpha,
                     dalpha,
                     tau: None,
+                    molten: false,
                 }
             }
             ReturnMap::Principal => {
@@ -216,6 +215,8 @@ struct RealReturn {
     /// step needs ln Δα).
     dalpha: f64,
     tau: Option<M3<f64>>,
+    /// At or above melting: no flow stress, the closed-form return.
+    molten: bool,
 }
 
 impl From<return_principal::Returned> for RealReturn {
@@ -225,6 +226,7 @@ impl From<return_principal::Returned> for RealReturn {
             alpha: r.alpha,
             dalpha: r.dalpha,
             tau: Some(r.tau),
+            molten: false,
         }
     }
 }
@@ -297,7 +299,10 @@ impl<D: Scalar> ElastoPlastic<D> {
                 ReturnMap::Reference => return_reference::implicit_step,
                 ReturnMap::Principal => return_principal_dual::implicit_step,
             };
-            let (fp_inv, alpha) = implicit_step(self, f, old, dt, &real.fp_inv, real.dalpha)?;
+            let (fp_inv, alpha) = match real.molten {
+                true => return_principal_dual::molten_step(f, old)?,
+                false => implicit_step(self, f, old, dt, &real.fp_inv, real.dalpha)?,
+            };
             (fp_inv, alpha, self.tau(&mul(f, &fp_inv), old.theta))
         };
         let dalpha = alpha - old.alpha;

@@ -663,17 +663,69 @@ mod molten {
         );
     }
 
-    /// Derivatives through a molten return are refused with that reason, not a
-    /// non-converged Newton solve.
+    /// The derivatives of a molten point's update (`return_principal_dual::molten_step`)
+    /// along F_00, F_01, F_12 and θ_n against central differences of the real update.
     #[test]
-    fn derivatives_at_a_molten_point_are_refused_by_name() {
-        let m = al7075().lift::<num_dual::Dual64>();
-        let f = M3::new(1.0, 0.05, 0.0, 0.0, 0.97, 0.0, 0.0, 0.0, 1.0).map(num_dual::Dual64::from);
-        let old = State::virgin(num_dual::Dual64::from(900.0));
-        let e = Model::update(&m, &f, 1e-9, &old).unwrap_err();
-        assert!(
-            matches!(e, crate::error::MaterialError::MoltenDerivatives { .. }),
-            "{e}"
-        );
+    fn derivatives_at_a_molten_point_match_central_differences() {
+        use num_dual::Dual64;
+        let (m, m_d) = (al7075(), al7075().lift::<Dual64>());
+        let f = M3::new(1.0, 0.05, 0.0, 0.002, 0.97, 0.01, 0.0, 0.0, 1.0);
+        let old = State::virgin(900.0);
+        let outputs = |f: &M3<f64>, old: &State<f64>| -> Vec<f64> {
+            let (sigma, new) = Model::update(&m, f, 1e-9, old).unwrap();
+            let mut out: Vec<f64> = sigma.iter().chain(new.fp_inv.iter()).copied().collect();
+            out.extend([new.alpha, new.theta]);
+            out
+        };
+        for direction in 0..4 {
+            let entry = [(0, 0), (0, 1), (1, 2)].get(direction).copied();
+            let seed = |x: f64, on: bool| {
+                if on {
+                    Dual64::new(x, 1.0)
+                } else {
+                    Dual64::from(x)
+                }
+            };
+            let f_d = M3::from_fn(|i, j| seed(f[(i, j)], entry == Some((i, j))));
+            let mut old_d = old.map(Dual64::from);
+            old_d.theta = seed(old.theta, entry.is_none());
+            let (sigma, new) = Model::update(&m_d, &f_d, 1e-9, &old_d).unwrap();
+            let mut exact: Vec<Dual64> = sigma.iter().chain(new.fp_inv.iter()).copied().collect();
+            exact.extend([new.alpha, new.theta]);
+            let h = 1e-7;
+            let moved = |dx: f64| {
+                let (mut f, mut old) = (f, old);
+                match entry {
+                    Some(ij) => f[ij] += dx,
+                    None => old.theta += dx * 1e3,
+                }
+                outputs(&f, &old)
+            };
+            let (up, down) = (moved(h), moved(-h));
+            let step = if entry.is_some() { h } else { h * 1e3 };
+            let largest = |xs: &[Dual64]| xs.iter().map(|x| x.eps.abs()).fold(0.0, f64::max);
+            let pressure = exact[0].re.abs();
+            // σ's derivatives against the pressure too: along a shear they vanish, and the
+            // quotient carries the round-off of σ's deviator (~1e-14 of p) over 2h
+            let scales = [largest(&exact[..9]).max(pressure), largest(&exact[9..])];
+            for (k, x) in exact.iter().enumerate() {
+                // σ to 1e-9 of the pressure (its deviator is round-off), the rest relative
+                let real = outputs(&f, &old)[k];
+                let size = if k < 9 { pressure } else { x.re.abs().max(1.0) };
+                assert!(
+                    (x.re - real).abs() <= 1e-9 * size,
+                    "output {k}: {} against {real}",
+                    x.re
+                );
+                let central = (up[k] - down[k]) / (2.0 * step);
+                // and the quotient's own round-off, ~1e-16 of the value over 2h
+                let noise = 1e-14 * x.re.abs() / step;
+                assert!(
+                    (x.eps - central).abs() < 1e-6 * scales[usize::from(k >= 9)] + noise,
+                    "direction {direction}, output {k}: exact {}, central {central}",
+                    x.eps
+                );
+            }
+        }
     }
 }

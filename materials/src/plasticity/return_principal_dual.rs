@@ -13,10 +13,13 @@
 //!    an isotropic function of b^tr; its derivative in the eigenbasis (Miehe's formula for
 //!    isotropic tensor functions) is dm_a on the diagonal and
 //!    Θ_ab (Vᵀ db V)_ab off it, Θ_ab = (m_a − m_b)/(λ_a − λ_b), with the limit
-//!    Θ_ab = ∂m_a/∂λ_a − ∂m_a/∂λ_b (∂m_a/∂λ_b = m_a (K⁻¹_ab − δ_ab)/(2λ_b)) where the two
+//!    Θ_ab = ∂m_a/∂λ_a − ∂m_a/∂λ_b (∂m_a/∂λ_b = m_a (K⁻¹_ab − δ_ab)/(2λ_b), K⁻¹_ab = ∂ε_a/∂ε_b^tr) where the two
 //!    trial eigenvalues coincide within `COINCIDENT` (the quotient's round-off and the
 //!    limit's O(λ_a − λ_b) error are then both about 1e-8 of Θ).
 //! 4. Fp⁻¹ = F⁻¹ M Fe^tr and α = α_n + Δα, in dual arithmetic.
+//!
+//! A point at or above melting (`return_principal::molten`) has ε_a = mean ε^tr in closed
+//! form: steps 1, 3 and 4 with ∂ε_a/∂ε_b^tr = 1/3 (`molten_step`).
 //!
 //! Real parts agree with `return_principal::solve` to round-off (the step corrects the
 //! converged y* by the residual left by its Newton tolerance). The derivatives are those of
@@ -29,7 +32,7 @@ use crate::plasticity::{return_principal, ElastoPlastic};
 use crate::scalar::{c, Scalar};
 use crate::sym_eigen;
 use crate::tensor::{inverse, lift, mul, re, M3};
-use nalgebra::{Matrix4, SVector, Vector3};
+use nalgebra::{Matrix3, SVector, Vector3};
 
 /// Relative gap of two trial eigenvalues below which Θ_ab takes its limit.
 const COINCIDENT: f64 = 1e-8;
@@ -71,17 +74,10 @@ pub fn implicit_step<D: Scalar>(
     fp_inv: &M3<f64>,
     dalpha: f64,
 ) -> Result<(M3<D>, D), MaterialError> {
-    let fe_trial = mul(f, &old.fp_inv);
-    let b_trial = mul(&fe_trial, &fe_trial.transpose());
-    let eigen = sym_eigen::decompose(&re(&b_trial));
-    let v = lift::<D>(&eigen.vectors);
-    let in_basis = mul(&mul(&v.transpose(), &b_trial), &v);
-    let lambda = Vector3::from_fn(|a, _| in_basis[(a, a)]);
-    let eps_trial = lambda.map(|l| l.ln() * c::<D>(0.5));
-
+    let trial = TrialBasis::new(f, old);
     let (m_re, old_re) = (m.re(), old.re());
     let fe = re(f) * fp_inv;
-    let b = eigen.vectors.transpose() * fe * fe.transpose() * eigen.vectors;
+    let b = trial.vectors.transpose() * fe * fe.transpose() * trial.vectors;
     let y_real = SVector::<f64, 4>::new(
         0.5 * b[(0, 0)].ln(),
         0.5 * b[(1, 1)].ln(),
@@ -91,33 +87,88 @@ pub fn implicit_step<D: Scalar>(
     let onset = m_re
         .flow
         .onset(old_re.alpha, old_re.theta, m_re.thermal.theta0);
-    let eps_trial_re = eps_trial.map(|e| e.re());
+    let eps_trial_re = trial.eps.map(|e| e.re());
     let k_inv = return_principal::local_jacobian(&m_re, eps_trial_re, &onset, dt, &y_real)
         .try_inverse()
         .ok_or(MaterialError::Singular {
             what: "principal return (implicit step)",
         })?;
-    let r = residual(m, &y_real.map(c::<D>), &eps_trial, old, dt);
+    let r = residual(m, &y_real.map(c::<D>), &trial.eps, old, dt);
     let y = SVector::<D, 4>::from_fn(|i, _| {
         (0..4).fold(c::<D>(y_real[i]), |y_i, j| y_i - r[j] * k_inv[(i, j)])
     });
-    let ratio = Vector3::from_fn(|a, _| (y[a] - eps_trial[a]).exp());
-
-    let flow_in_basis = flow_in_eigenbasis(&ratio, &in_basis, &k_inv);
-    let flow = mul(&mul(&v, &flow_in_basis), &v.transpose());
-    let f_inv = inverse(f).ok_or(MaterialError::InvertedDeformation {
-        det_f: re(f).determinant(),
-    })?;
-    let fp_inv = mul(&mul(&f_inv, &flow), &fe_trial);
+    let eps = Vector3::new(y[0], y[1], y[2]);
+    let fp_inv = trial.flow_back(f, &eps, &k_inv.fixed_view::<3, 3>(0, 0).into_owned())?;
     Ok((fp_inv, old.alpha + y[3].exp()))
 }
 
+/// Fp⁻¹ and α with their derivatives for a point at or above melting
+/// (`return_principal::molten`): the whole deviatoric trial strain flows, ε_a = mean ε^tr
+/// and Δα = √(2/3) ‖dev ε^tr‖, closed forms in ε^tr, so ∂ε_a/∂ε_b^tr = 1/3 takes the place
+/// of K⁻¹ in step 3.
+pub fn molten_step<D: Scalar>(f: &M3<D>, old: &State<D>) -> Result<(M3<D>, D), MaterialError> {
+    let trial = TrialBasis::new(f, old);
+    let mean = trial.eps.sum() / c::<D>(3.0);
+    let dev = trial.eps.map(|e| e - mean);
+    let dalpha = dev.dot(&dev).sqrt() * c::<D>((2.0f64 / 3.0).sqrt());
+    let fp_inv = trial.flow_back(f, &Vector3::repeat(mean), &Matrix3::repeat(1.0 / 3.0))?;
+    Ok((fp_inv, old.alpha + dalpha))
+}
+
+/// The trial state in the real eigenbasis of b^tr (step 1 of the module doc).
+struct TrialBasis<D> {
+    fe: M3<D>,
+    /// V, the real eigenvectors of b^tr, and V as dual scalars.
+    vectors: M3<f64>,
+    v: M3<D>,
+    /// Vᵀ b^tr V: λ_a^tr on the diagonal, the derivatives of the off-diagonal terms.
+    in_basis: M3<D>,
+    /// ε_a^tr = ½ ln λ_a^tr.
+    eps: Vector3<D>,
+}
+
+impl<D: Scalar> TrialBasis<D> {
+    fn new(f: &M3<D>, old: &State<D>) -> Self {
+        let fe = mul(f, &old.fp_inv);
+        let b = mul(&fe, &fe.transpose());
+        let vectors = sym_eigen::decompose(&re(&b)).vectors;
+        let v = lift::<D>(&vectors);
+        let in_basis = mul(&mul(&v.transpose(), &b), &v);
+        let eps = Vector3::from_fn(|a, _| in_basis[(a, a)].ln() * c::<D>(0.5));
+        TrialBasis {
+            fe,
+            vectors,
+            v,
+            in_basis,
+            eps,
+        }
+    }
+
+    /// Fp⁻¹ = F⁻¹ M Fe^tr from the returned strains `eps` (ε_a) and their real
+    /// derivatives `deps` = ∂ε/∂ε^tr (steps 3 and 4).
+    fn flow_back(
+        &self,
+        f: &M3<D>,
+        eps: &Vector3<D>,
+        deps: &Matrix3<f64>,
+    ) -> Result<M3<D>, MaterialError> {
+        let ratio = Vector3::from_fn(|a, _| (eps[a] - self.eps[a]).exp());
+        let flow_in_basis = flow_in_eigenbasis(&ratio, &self.in_basis, deps);
+        let flow = mul(&mul(&self.v, &flow_in_basis), &self.v.transpose());
+        let f_inv = inverse(f).ok_or(MaterialError::InvertedDeformation {
+            det_f: re(f).determinant(),
+        })?;
+        Ok(mul(&mul(&f_inv, &flow), &self.fe))
+    }
+}
+
 /// M = exp(−√(3/2) Δα N) in the trial eigenbasis, with its derivatives (step 3 of the
-/// module doc): `ratio` the m_a, `in_basis` Vᵀ b^tr V (diagonal λ_a^tr), `k_inv` K⁻¹.
+/// module doc): `ratio` the m_a, `in_basis` Vᵀ b^tr V (diagonal λ_a^tr), `deps`
+/// ∂ε_a/∂ε_b^tr.
 fn flow_in_eigenbasis<D: Scalar>(
     ratio: &Vector3<D>,
     in_basis: &M3<D>,
-    k_inv: &Matrix4<f64>,
+    deps: &Matrix3<f64>,
 ) -> M3<D> {
     let lambda = Vector3::from_fn(|a, _| in_basis[(a, a)].re());
     let m = ratio.map(|m| m.re());
@@ -129,7 +180,7 @@ fn flow_in_eigenbasis<D: Scalar>(
             // ∂m_a/∂λ_b, symmetrized over the pair
             let slope = |a: usize, b: usize| {
                 let delta = if a == b { 1.0 } else { 0.0 };
-                m[a] * (k_inv[(a, b)] - delta) / (2.0 * lambda[b])
+                m[a] * (deps[(a, b)] - delta) / (2.0 * lambda[b])
             };
             0.5 * (slope(a, a) - slope(a, b) + slope(b, b) - slope(b, a))
         }
