@@ -18,6 +18,9 @@
 //! letting go) the one-sided derivative of the branch the run took, where the run itself
 //! has a kink.
 //!
+//! A point whose update gives a non-finite derivative stops the run, naming the point
+//! and step (`Cause::NonFinite`), with the output up to there kept.
+//!
 //! Cost: one dual update per point and step (the return mapping by the implicit function
 //! theorem: one extra Newton step in dual arithmetic) and the transfers in P + 1 lanes.
 //! Memory: (P + 1) numbers for each real one of the state; no tape.
@@ -131,6 +134,13 @@ fn join_state<const P: usize>(re: &State<f64>, d: &State<Dual<P>>) -> State<Dual
         theta: join(re.theta, d.theta),
         dalpha: join(re.dalpha, d.dalpha),
     }
+}
+
+/// Whether every derivative part of a point's σ and history is finite.
+fn finite_derivatives<const P: usize>(sigma: &Matrix3<Dual<P>>, state: &State<Dual<P>>) -> bool {
+    let scalars = [state.alpha, state.theta, state.dalpha];
+    (sigma.iter().chain(state.fp_inv.iter()).chain(&scalars))
+        .all(|x| eps(x).iter().all(|d| d.is_finite()))
 }
 
 /// Whether the pass carries shape functions `kernel`.
@@ -419,6 +429,10 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                         Ok(new) => new,
                         Err(e) => return Some((i, Box::new(Cause::Material(e)))),
                     };
+                    if !finite_derivatives(&sigma_new, &state_new) {
+                        let what = "derivative of the material update (σ or history)";
+                        return Some((i, Box::new(Cause::NonFinite { what })));
+                    }
                     let j = det(&f_new);
                     let d = (l3 + l3.transpose()) * c::<Dual<P>>(0.5);
                     *sigma = updates[b].with_viscosity(sigma_new, &d, j);
