@@ -4,8 +4,8 @@
 //! value: how much q changes per unit relative change of the parameter) go to
 //! `derivatives.csv`: of each rigid body's contact force [N, plane strain N/m], columns
 //! `{body}_force_{axis}_{parameter}_n` as in the history, then of each control point's
-//! position [m], `{point}_{axis}_{parameter}_m`. Up to `MAX_PARAMETERS` parameters, each a parameter of
-//! at least one body's model (the bodies without it do not depend on it).
+//! position [m], `{point}_{axis}_{parameter}_m`. Up to `MAX_PARAMETERS` parameters, each
+//! a parameter of at least one body's model (the bodies without it do not depend on it).
 
 use crate::output::{force_unit, AXES};
 use crate::solver::{RunError, Solver, Tangent, Unsupported};

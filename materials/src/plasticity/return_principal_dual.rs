@@ -13,9 +13,10 @@
 //!    an isotropic function of b^tr; its derivative in the eigenbasis (Miehe's formula for
 //!    isotropic tensor functions) is dm_a on the diagonal and
 //!    Θ_ab (Vᵀ db V)_ab off it, Θ_ab = (m_a − m_b)/(λ_a − λ_b), with the limit
-//!    Θ_ab = ∂m_a/∂λ_a − ∂m_a/∂λ_b (∂m_a/∂λ_b = m_a (K⁻¹_ab − δ_ab)/(2λ_b), K⁻¹_ab = ∂ε_a/∂ε_b^tr) where the two
-//!    trial eigenvalues coincide within `COINCIDENT` (the quotient's round-off and the
-//!    limit's O(λ_a − λ_b) error are then both about 1e-8 of Θ).
+//!    Θ_ab = ∂m_a/∂λ_a − ∂m_a/∂λ_b (∂m_a/∂λ_b = m_a (K⁻¹_ab − δ_ab)/(2λ_b), where
+//!    K⁻¹_ab = ∂ε_a/∂ε_b^tr) where the two trial eigenvalues coincide within `COINCIDENT`
+//!    (the quotient's round-off and the limit's O(λ_a − λ_b) error are then both about
+//!    1e-8 of Θ).
 //! 4. Fp⁻¹ = F⁻¹ M Fe^tr and α = α_n + Δα, in dual arithmetic.
 //!
 //! A point at or above melting (`return_principal::molten`) has ε_a = mean ε^tr in closed
