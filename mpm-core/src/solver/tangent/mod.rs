@@ -203,10 +203,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             ));
         }
         let n = solver.particles.len();
-        let condition_stiffness = match condition_stiffness(solver) {
-            Ok(k) => k,
-            Err(why) => return refuse(why),
-        };
+        let condition_stiffness = condition_stiffness(solver).map_err(Unsupported)?;
         let zero = SVector::zeros();
         let mut state = Vec::with_capacity(n);
         for (block, model) in solver.blocks.iter().zip(&models) {
