@@ -54,6 +54,15 @@ impl<D: Scalar> Model<D> for AnyModel<D> {
     ) -> Result<(M3<D>, State<D>), MaterialError> {
         each!(self, m => m.update(f, dt, old))
     }
+    fn update_from_real(
+        &self,
+        f: &M3<D>,
+        dt: f64,
+        old: &State<D>,
+        real: &State<f64>,
+    ) -> Result<(M3<D>, State<D>), MaterialError> {
+        each!(self, m => m.update_from_real(f, dt, old, real))
+    }
     fn update_batch(&self, f: &[M3<D>], dt: f64, old: &[State<D>], deliver: &mut Deliver<D>) {
         each!(self, m => m.update_batch(f, dt, old, deliver))
     }

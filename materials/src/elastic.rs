@@ -6,7 +6,7 @@
 
 use crate::parameter_set;
 use crate::scalar::{c, Scalar};
-use crate::tensor::{det, identity, mul, trace, M3};
+use crate::tensor::{det, identity, mul_transpose_self, trace, M3};
 
 parameter_set! {
     /// Elastic constants and reference density.
@@ -45,7 +45,7 @@ impl<D: Scalar> Elastic<D> {
     /// eq. 4.22 for a temperature rise `dtheta` = θ − θ0 and expansion coefficient
     /// `alpha_sigma`.
     pub fn tau(&self, fe: &M3<D>, dtheta: D, alpha_sigma: D) -> M3<D> {
-        let b = mul(fe, &fe.transpose());
+        let b = mul_transpose_self(fe);
         let p = self.spherical(det(fe).ln(), dtheta, alpha_sigma);
         (b - identity::<D>()) * self.shear_modulus() + identity::<D>() * p
     }

@@ -94,6 +94,22 @@ pub trait Model<D: Scalar>: Clone + Send + Sync {
         old: &State<D>,
     ) -> Result<(M3<D>, State<D>), MaterialError>;
 
+    /// `update` given the new state `real` that the same update gave in real arithmetic
+    /// for the real parts of `f` and `old` (the run's own update, in a derivative pass): a
+    /// model that solves a local problem takes the solution from there and only
+    /// differentiates it. The same result as `update` to round-off; the default is
+    /// `update`. A model that wraps another forwards it.
+    fn update_from_real(
+        &self,
+        f: &M3<D>,
+        dt: f64,
+        old: &State<D>,
+        real: &State<f64>,
+    ) -> Result<(M3<D>, State<D>), MaterialError> {
+        let _ = real;
+        self.update(f, dt, old)
+    }
+
     /// `update` of many points at once: `deliver(i, result)` for point i of `f` and `old`
     /// (same length), in any order. Models that can solve several points in lockstep
     /// override it; each result equals `update`'s. A model that wraps another forwards it

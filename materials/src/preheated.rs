@@ -52,6 +52,15 @@ impl<D: Scalar, M: Model<D>> Model<D> for Preheated<M> {
     ) -> Result<(M3<D>, State<D>), MaterialError> {
         self.inner.update(f, dt, old)
     }
+    fn update_from_real(
+        &self,
+        f: &M3<D>,
+        dt: f64,
+        old: &State<D>,
+        real: &State<f64>,
+    ) -> Result<(M3<D>, State<D>), MaterialError> {
+        self.inner.update_from_real(f, dt, old, real)
+    }
     fn update_batch(&self, f: &[M3<D>], dt: f64, old: &[State<D>], deliver: &mut Deliver<D>) {
         self.inner.update_batch(f, dt, old, deliver)
     }

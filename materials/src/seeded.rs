@@ -19,12 +19,14 @@ pub type Dual<const P: usize> = DualSVec64<P>;
 /// `mpm_core::solver::Tangent`). Object-safe, so that blocks of different models share
 /// one pass.
 pub trait SeededModel<const P: usize>: Send + Sync {
-    /// `Model::update` in dual arithmetic.
+    /// `Model::update_from_real` in dual arithmetic: `real` is the new state the run's
+    /// own update gave for the real parts of `f` and `old`.
     fn update(
         &self,
         f: &M3<Dual<P>>,
         dt: f64,
         old: &State<Dual<P>>,
+        real: &State<f64>,
     ) -> Result<(M3<Dual<P>>, State<Dual<P>>), MaterialError>;
     /// The initial state with its derivatives (nonzero when e.g. θ0 is free).
     fn initial_state(&self) -> State<Dual<P>>;
@@ -40,8 +42,9 @@ impl<const P: usize, M: Model<Dual<P>>> SeededModel<P> for M {
         f: &M3<Dual<P>>,
         dt: f64,
         old: &State<Dual<P>>,
+        real: &State<f64>,
     ) -> Result<(M3<Dual<P>>, State<Dual<P>>), MaterialError> {
-        Model::update(self, f, dt, old)
+        Model::update_from_real(self, f, dt, old, real)
     }
     fn initial_state(&self) -> State<Dual<P>> {
         Model::initial_state(self)

@@ -56,6 +56,31 @@ pub fn mul<T: Ring>(a: &M3<T>, b: &M3<T>) -> M3<T> {
     M3::from_fn(|i, j| a[(i, 0)] * b[(0, j)] + a[(i, 1)] * b[(1, j)] + a[(i, 2)] * b[(2, j)])
 }
 
+/// a aᵀ, six entries formed and mirrored: the same numbers as `mul(a, &a.transpose())`
+/// (each entry sums a_i0 a_j0 + a_i1 a_j1 + a_i2 a_j2 in that order).
+#[inline]
+pub fn mul_transpose_self<T: Ring>(a: &M3<T>) -> M3<T> {
+    let e =
+        |i: usize, j: usize| a[(i, 0)] * a[(j, 0)] + a[(i, 1)] * a[(j, 1)] + a[(i, 2)] * a[(j, 2)];
+    let (b01, b02, b12) = (e(0, 1), e(0, 2), e(1, 2));
+    M3::new(e(0, 0), b01, b02, b01, e(1, 1), b12, b02, b12, e(2, 2))
+}
+
+/// Vᵀ a V for a real V (`a` in the basis of V's columns), each product of a real entry
+/// and a scalar costing what a real factor costs (for dual scalars half a dual product).
+pub fn rotate_into<D: Scalar>(v: &M3<f64>, a: &M3<D>) -> M3<D> {
+    let av =
+        M3::from_fn(|i, j| a[(i, 0)] * v[(0, j)] + a[(i, 1)] * v[(1, j)] + a[(i, 2)] * v[(2, j)]);
+    M3::from_fn(|i, j| av[(0, j)] * v[(0, i)] + av[(1, j)] * v[(1, i)] + av[(2, j)] * v[(2, i)])
+}
+
+/// V a Vᵀ for a real V (`a` back from the basis of V's columns), as `rotate_into`.
+pub fn rotate_out<D: Scalar>(v: &M3<f64>, a: &M3<D>) -> M3<D> {
+    let av =
+        M3::from_fn(|i, j| a[(i, 0)] * v[(j, 0)] + a[(i, 1)] * v[(j, 1)] + a[(i, 2)] * v[(j, 2)]);
+    M3::from_fn(|i, j| av[(0, j)] * v[(i, 0)] + av[(1, j)] * v[(i, 1)] + av[(2, j)] * v[(i, 2)])
+}
+
 /// Inverse by the adjugate; `None` if the determinant's real part is zero.
 pub fn inverse<D: Scalar>(a: &M3<D>) -> Option<M3<D>> {
     let d = det(a);

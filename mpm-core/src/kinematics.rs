@@ -12,6 +12,7 @@
 //! - `Solid` (D = 3): full 3D.
 
 use materials::scalar::{c, Scalar};
+use materials::tensor::mul;
 use nalgebra::{Matrix3, SMatrix, SVector};
 use std::f64::consts::PI;
 
@@ -46,7 +47,7 @@ impl Kinematics {
         let dt = c::<T>(dt);
         let mut l3 = Matrix3::zeros();
         l3.fixed_view_mut::<D, D>(0, 0).copy_from(l);
-        let mut f_new = (Matrix3::identity() + l3 * dt) * f;
+        let mut f_new = mul(&(Matrix3::identity() + l3 * dt), f);
         if self == Kinematics::Axisymmetric {
             l3[(2, 2)] = vg[0] / x[0];
             f_new[(2, 2)] = (x[0] + vg[0] * dt) / c::<T>(x_ref[0]);

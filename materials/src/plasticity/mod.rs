@@ -171,6 +171,33 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
         self.after_return(f, dt, old, real)
     }
 
+    /// The run's real return in place of solving it again: the point yielded where the
+    /// run's Δα is positive (an elastic point, or a molten one that did not flow, takes
+    /// `update`), and the implicit step starts from its Fp⁻¹ and Δα.
+    fn update_from_real(
+        &self,
+        f: &M3<D>,
+        dt: f64,
+        old: &State<D>,
+        real: &State<f64>,
+    ) -> Result<(M3<D>, State<D>), MaterialError> {
+        if real.dalpha <= 0.0 {
+            return self.update(f, dt, old);
+        }
+        let old_re = old.re();
+        let flow = self.flow.map(|_, v| v.re());
+        let theta0 = self.thermal.theta0.re();
+        let molten = flow.onset(old_re.alpha, old_re.theta, theta0).is_molten();
+        let real = RealReturn {
+            fp_inv: real.fp_inv,
+            alpha: real.alpha,
+            dalpha: real.dalpha,
+            tau: None,
+            molten,
+        };
+        self.after_return(f, dt, old, real)
+    }
+
     /// The principal return four points at a time (`return_principal::solve_batch`); one
     /// at a time for dual scalars and the reference return.
     fn update_batch(&self, f: &[M3<D>], dt: f64, old: &[State<D>], deliver: &mut Deliver<D>) {
@@ -229,6 +256,13 @@ impl From<return_principal::Returned> for RealReturn {
             molten: false,
         }
     }
+}
+
+/// A return with the derivatives of its result: Fp⁻¹, Fe = F Fp⁻¹ and α.
+struct Flowed<D> {
+    fp_inv: M3<D>,
+    fe: M3<D>,
+    alpha: D,
 }
 
 /// Up to `MAX_LANES` yielding points of a batch, in real arithmetic, and their indices.
@@ -295,17 +329,27 @@ impl<D: Scalar> ElastoPlastic<D> {
             };
             (fp_inv, c::<D>(real.alpha), tau)
         } else {
-            let implicit_step = match self.return_map {
-                ReturnMap::Reference => return_reference::implicit_step,
-                ReturnMap::Principal => return_principal_dual::implicit_step,
+            let (fp_inv, dalpha) = (&real.fp_inv, real.dalpha);
+            let Flowed { fp_inv, fe, alpha } = match (real.molten, self.return_map) {
+                (true, _) => return_principal_dual::molten_step(f, old)?,
+                (false, ReturnMap::Principal) => {
+                    return_principal_dual::implicit_step(self, f, old, dt, fp_inv, dalpha)?
+                }
+                (false, ReturnMap::Reference) => {
+                    let (fp_inv, alpha) =
+                        return_reference::implicit_step(self, f, old, dt, fp_inv, dalpha)?;
+                    let fe = mul(f, &fp_inv);
+                    Flowed { fp_inv, fe, alpha }
+                }
             };
-            let (fp_inv, alpha) = match real.molten {
-                true => return_principal_dual::molten_step(f, old)?,
-                false => implicit_step(self, f, old, dt, &real.fp_inv, real.dalpha)?,
-            };
-            (fp_inv, alpha, self.tau(&mul(f, &fp_inv), old.theta))
+            (fp_inv, alpha, self.tau(&fe, old.theta))
         };
-        let dalpha = alpha - old.alpha;
+        // Δα as solved where it is real: α − α_n loses it below the last digit of α_n,
+        // and the next return (and a derivative pass, `update_from_real`) starts from it.
+        let dalpha = match D::NDERIV {
+            0 => c::<D>(real.dalpha),
+            _ => alpha - old.alpha,
+        };
         // τ_VM = τ_y at the converged return (φ = 0 holds identically in the parameters,
         // so their derivatives agree too) and costs no transcendental functions.
         let heating = self.thermal.gamma_tq / (self.elastic.rho * self.thermal.c_theta)

@@ -17,7 +17,7 @@
 //!    K⁻¹_ab = ∂ε_a/∂ε_b^tr) where the two trial eigenvalues coincide within `COINCIDENT`
 //!    (the quotient's round-off and the limit's O(λ_a − λ_b) error are then both about
 //!    1e-8 of Θ).
-//! 4. Fp⁻¹ = F⁻¹ M Fe^tr and α = α_n + Δα, in dual arithmetic.
+//! 4. Fe = M Fe^tr, Fp⁻¹ = F⁻¹ Fe and α = α_n + Δα, in dual arithmetic.
 //!
 //! A point at or above melting (`return_principal::molten`) has ε_a = mean ε^tr in closed
 //! form: steps 1, 3 and 4 with ∂ε_a/∂ε_b^tr = 1/3 (`molten_step`).
@@ -29,10 +29,10 @@
 
 use crate::error::MaterialError;
 use crate::material::State;
-use crate::plasticity::{return_principal, ElastoPlastic};
+use crate::plasticity::{return_principal, ElastoPlastic, Flowed};
 use crate::scalar::{c, Scalar};
 use crate::sym_eigen;
-use crate::tensor::{inverse, lift, mul, re, M3};
+use crate::tensor::{inverse, mul, mul_transpose_self, re, rotate_into, rotate_out, M3};
 use nalgebra::{Matrix3, SVector, Vector3};
 
 /// Relative gap of two trial eigenvalues below which Θ_ab takes its limit.
@@ -65,8 +65,8 @@ fn residual<E: Scalar>(
     )
 }
 
-/// Fp⁻¹ and α with their derivatives, from the real return (`fp_inv`, `dalpha` = Δα) of the
-/// same F and old state.
+/// Fp⁻¹, Fe and α with their derivatives, from the real return (`fp_inv`, `dalpha` = Δα)
+/// of the same F and old state.
 pub fn implicit_step<D: Scalar>(
     m: &ElastoPlastic<D>,
     f: &M3<D>,
@@ -74,7 +74,7 @@ pub fn implicit_step<D: Scalar>(
     dt: f64,
     fp_inv: &M3<f64>,
     dalpha: f64,
-) -> Result<(M3<D>, D), MaterialError> {
+) -> Result<Flowed<D>, MaterialError> {
     let trial = TrialBasis::new(f, old);
     let (m_re, old_re) = (m.re(), old.re());
     let fe = re(f) * fp_inv;
@@ -99,29 +99,36 @@ pub fn implicit_step<D: Scalar>(
         (0..4).fold(c::<D>(y_real[i]), |y_i, j| y_i - r[j] * k_inv[(i, j)])
     });
     let eps = Vector3::new(y[0], y[1], y[2]);
-    let fp_inv = trial.flow_back(f, &eps, &k_inv.fixed_view::<3, 3>(0, 0).into_owned())?;
-    Ok((fp_inv, old.alpha + y[3].exp()))
+    let (fp_inv, fe) = trial.flow_back(f, &eps, &k_inv.fixed_view::<3, 3>(0, 0).into_owned())?;
+    Ok(Flowed {
+        fp_inv,
+        fe,
+        alpha: old.alpha + y[3].exp(),
+    })
 }
 
-/// Fp⁻¹ and α with their derivatives for a point at or above melting
+/// Fp⁻¹, Fe and α with their derivatives for a point at or above melting
 /// (`return_principal::molten`): the whole deviatoric trial strain flows, ε_a = mean ε^tr
 /// and Δα = √(2/3) ‖dev ε^tr‖, closed forms in ε^tr, so ∂ε_a/∂ε_b^tr = 1/3 takes the place
 /// of K⁻¹ in step 3.
-pub fn molten_step<D: Scalar>(f: &M3<D>, old: &State<D>) -> Result<(M3<D>, D), MaterialError> {
+pub fn molten_step<D: Scalar>(f: &M3<D>, old: &State<D>) -> Result<Flowed<D>, MaterialError> {
     let trial = TrialBasis::new(f, old);
     let mean = trial.eps.sum() / c::<D>(3.0);
     let dev = trial.eps.map(|e| e - mean);
     let dalpha = dev.dot(&dev).sqrt() * c::<D>((2.0f64 / 3.0).sqrt());
-    let fp_inv = trial.flow_back(f, &Vector3::repeat(mean), &Matrix3::repeat(1.0 / 3.0))?;
-    Ok((fp_inv, old.alpha + dalpha))
+    let (fp_inv, fe) = trial.flow_back(f, &Vector3::repeat(mean), &Matrix3::repeat(1.0 / 3.0))?;
+    Ok(Flowed {
+        fp_inv,
+        fe,
+        alpha: old.alpha + dalpha,
+    })
 }
 
 /// The trial state in the real eigenbasis of b^tr (step 1 of the module doc).
 struct TrialBasis<D> {
     fe: M3<D>,
-    /// V, the real eigenvectors of b^tr, and V as dual scalars.
+    /// V, the real eigenvectors of b^tr.
     vectors: M3<f64>,
-    v: M3<D>,
     /// Vᵀ b^tr V: λ_a^tr on the diagonal, the derivatives of the off-diagonal terms.
     in_basis: M3<D>,
     /// ε_a^tr = ½ ln λ_a^tr.
@@ -131,35 +138,34 @@ struct TrialBasis<D> {
 impl<D: Scalar> TrialBasis<D> {
     fn new(f: &M3<D>, old: &State<D>) -> Self {
         let fe = mul(f, &old.fp_inv);
-        let b = mul(&fe, &fe.transpose());
+        let b = mul_transpose_self(&fe);
         let vectors = sym_eigen::decompose(&re(&b)).vectors;
-        let v = lift::<D>(&vectors);
-        let in_basis = mul(&mul(&v.transpose(), &b), &v);
+        let in_basis = rotate_into(&vectors, &b);
         let eps = Vector3::from_fn(|a, _| in_basis[(a, a)].ln() * c::<D>(0.5));
         TrialBasis {
             fe,
             vectors,
-            v,
             in_basis,
             eps,
         }
     }
 
-    /// Fp⁻¹ = F⁻¹ M Fe^tr from the returned strains `eps` (ε_a) and their real
-    /// derivatives `deps` = ∂ε/∂ε^tr (steps 3 and 4).
+    /// Fp⁻¹ = F⁻¹ Fe and Fe = M Fe^tr from the returned strains `eps` (ε_a) and their
+    /// real derivatives `deps` = ∂ε/∂ε^tr (steps 3 and 4).
     fn flow_back(
         &self,
         f: &M3<D>,
         eps: &Vector3<D>,
         deps: &Matrix3<f64>,
-    ) -> Result<M3<D>, MaterialError> {
+    ) -> Result<(M3<D>, M3<D>), MaterialError> {
         let ratio = Vector3::from_fn(|a, _| (eps[a] - self.eps[a]).exp());
         let flow_in_basis = flow_in_eigenbasis(&ratio, &self.in_basis, deps);
-        let flow = mul(&mul(&self.v, &flow_in_basis), &self.v.transpose());
+        let flow = rotate_out(&self.vectors, &flow_in_basis);
         let f_inv = inverse(f).ok_or(MaterialError::InvertedDeformation {
             det_f: re(f).determinant(),
         })?;
-        Ok(mul(&mul(&f_inv, &flow), &self.fe))
+        let fe = mul(&flow, &self.fe);
+        Ok((mul(&f_inv, &fe), fe))
     }
 }
 
@@ -237,8 +243,13 @@ mod tests {
         }
     }
 
-    /// The update from `old` to `f` with every direction seeded, by one return mapping.
-    fn seeded_update(return_map: ReturnMap, f: &M3<f64>, old: &State<f64>) -> (M3<D9>, State<D9>) {
+    /// The model with its parameters, and `f` and `old` with their entries, seeded in
+    /// the directions of `PARAMETERS`.
+    fn seeded(
+        return_map: ReturnMap,
+        f: &M3<f64>,
+        old: &State<f64>,
+    ) -> (ElastoPlastic<D9>, M3<D9>, State<D9>) {
         let model = steel(return_map).map_params(|name, v| seed_named(&PARAMETERS, name, v));
         let mut f_d = f.map(D9::from);
         f_d[(0, 0)] = D9::from_re(f[(0, 0)]).derivative(5);
@@ -246,6 +257,12 @@ mod tests {
         f_d[(1, 2)] = D9::from_re(f[(1, 2)]).derivative(7);
         let mut old_d = old.map(D9::from);
         old_d.alpha = D9::from_re(old.alpha).derivative(8);
+        (model, f_d, old_d)
+    }
+
+    /// The update from `old` to `f` with every direction seeded, by one return mapping.
+    fn seeded_update(return_map: ReturnMap, f: &M3<f64>, old: &State<f64>) -> (M3<D9>, State<D9>) {
+        let (model, f_d, old_d) = seeded(return_map, f, old);
         model
             .update(&f_d, DT, &old_d)
             .expect("the update converges")
@@ -310,11 +327,52 @@ mod tests {
         }
     }
 
-    /// A step that yields by so little that α_n + Δα rounds to α_n (the yield onset
-    /// found by bisection on the step's size): the implicit step takes ln Δα from the
-    /// return itself, so the derivatives stay finite (from α − α_n they were ln 0).
+    /// Given the real update's new state (the run's own return, in a derivative pass),
+    /// the update in dual arithmetic gives what the whole update gives: elastic, plastic
+    /// from virgin and after prestrain, molten, and yielding below the last digit of α_n
+    /// (the state keeps Δα as solved), with both returns.
     #[test]
-    fn a_step_that_yields_below_the_last_digit_of_alpha_keeps_finite_derivatives() {
+    fn the_update_from_the_real_return_gives_the_whole_update() {
+        let shear = M3::new(1.004, 0.012, 0.0, 0.003, 0.995, 0.002, 0.0, -0.001, 1.0);
+        let prestrain = M3::new(0.99, 0.004, 0.0, 0.0, 1.004, 0.0, 0.0, 0.0, 1.006);
+        let small = M3::new(1.0001, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0);
+        let (tiny_f, tiny_old) = onset_of_flow();
+        let molten = State {
+            theta: 1800.0,
+            ..State::virgin(293.15)
+        };
+        for return_map in [ReturnMap::Principal, ReturnMap::Reference] {
+            for (name, f, old) in [
+                ("elastic", small, State::virgin(293.15)),
+                ("shear from virgin", shear, State::virgin(293.15)),
+                (
+                    "after prestrain",
+                    shear * prestrain,
+                    prestrained(&prestrain),
+                ),
+                ("molten", shear, molten),
+                ("below the last digit of α_n", tiny_f, tiny_old),
+            ] {
+                let real = steel(return_map).update(&f, DT, &old).unwrap().1;
+                let (model, f_d, old_d) = seeded(return_map, &f, &old);
+                let (s_w, new_w) = model.update(&f_d, DT, &old_d).unwrap();
+                let (s_r, new_r) = model.update_from_real(&f_d, DT, &old_d, &real).unwrap();
+                let (whole, from_real) = (outputs(&s_w, &new_w), outputs(&s_r, &new_r));
+                let error = worst(&whole, &from_real);
+                assert!(
+                    error < 1e-12,
+                    "{return_map:?}, {name}: derivative gap {error:e}"
+                );
+                for (w, r) in whole.iter().zip(&from_real) {
+                    assert!((w.re - r.re).abs() <= 1e-14 * w.re.abs().max(1.0), "{name}");
+                }
+            }
+        }
+    }
+
+    /// F whose step from a state with α_n = 1000 yields by so little that α_n + Δα rounds
+    /// to α_n (the onset of flow found by bisection on the step's size), and that state.
+    fn onset_of_flow() -> (M3<f64>, State<f64>) {
         let prestrain = M3::new(0.99, 0.004, 0.0, 0.0, 1.004, 0.0, 0.0, 0.0, 1.006);
         // α_n = 1000, whose last digit (1.1e-13) lies far above Δα at the onset of flow
         let old = State {
@@ -344,7 +402,15 @@ mod tests {
                 false => elastic = mid,
             }
         }
-        let (sigma, state) = seeded_update(ReturnMap::Principal, &at(plastic), &old);
+        (at(plastic), old)
+    }
+
+    /// A step that yields by so little that α_n + Δα rounds to α_n: the implicit step takes ln Δα from the
+    /// return itself, so the derivatives stay finite (from α − α_n they were ln 0).
+    #[test]
+    fn a_step_that_yields_below_the_last_digit_of_alpha_keeps_finite_derivatives() {
+        let (f, old) = onset_of_flow();
+        let (sigma, state) = seeded_update(ReturnMap::Principal, &f, &old);
         assert_eq!(
             state.alpha.re, old.alpha,
             "Δα lies below the last digit of α_n"

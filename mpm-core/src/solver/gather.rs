@@ -33,11 +33,13 @@ pub(super) fn interpolate<T: Scalar, const D: usize>(
     let mut vg = SVector::<T, D>::zeros();
     let mut a = SVector::<T, D>::zeros();
     let mut l = SMatrix::<T, D, D>::zeros();
+    // written out entry by entry: nalgebra's products with a scalar and its general
+    // product are several times slower for dual scalars, and give the same numbers
     for (c, &index) in node.iter().enumerate() {
         let node = &nodes[index as usize];
-        vg += node.velocity * n[c];
-        a += node.acceleration * n[c];
-        l += node.velocity * grad[c].transpose();
+        vg += SVector::<T, D>::from_fn(|i, _| node.velocity[i] * n[c]);
+        a += SVector::<T, D>::from_fn(|i, _| node.acceleration[i] * n[c]);
+        l += SMatrix::<T, D, D>::from_fn(|i, j| node.velocity[i] * grad[c][j]);
     }
     (vg, a, l)
 }

@@ -214,7 +214,12 @@ impl<const D: usize, T: Scalar> PointShare<D, T> {
             node.momentum += self.momentum * n;
         }
         if t.force {
-            let mut f = self.external * n - self.stress_volume * grad;
+            // σ V ∇N written out (as nalgebra sums it, faster for dual scalars)
+            let sv = &self.stress_volume;
+            let internal = SVector::<T, D>::from_fn(|i, _| {
+                (1..D).fold(sv[(i, 0)] * grad[0], |sum, j| sum + sv[(i, j)] * grad[j])
+            });
+            let mut f = self.external * n - internal;
             f[0] -= self.hoop * n;
             node.force += f;
         }

@@ -72,6 +72,9 @@ pub struct Tangent<const D: usize, const P: usize> {
     volume: Vec<Dual<P>>,
     /// History of every point (by point index; a block's points are contiguous).
     state: Vec<State<Dual<P>>>,
+    /// The real F and history of every point before this step's update of the stress,
+    /// which the update's derivative reads after the update has replaced them.
+    before_update: (Vec<Matrix3<f64>>, Vec<State<f64>>),
     nodes: Vec<Node<D, Dual<P>>>,
     /// Each block's kernel.
     kernels: Vec<SmoothKernel>,
@@ -221,6 +224,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             stress: vec![Matrix3::zeros(); n],
             volume: vec![Dual::from_re(0.0); n],
             state,
+            before_update: (Vec::with_capacity(n), Vec::with_capacity(n)),
             nodes: Vec::new(),
             stencils: DualStencils::new(n, &kernels),
             kernels,
@@ -266,26 +270,41 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             MapMomentum => self.map(s, Transfer::MOMENTUM),
             SolveMomentum => self.solve(s, NodalUpdate::Accelerate),
             NodalVelocity => self.solve(s, NodalUpdate::VelocityOnly),
-            UpdateVelocity => self.gather(s, true, false)?,
-            UpdateStress => self.gather(s, false, true)?,
-            UpdateVelocityAndStress => self.gather(s, true, true)?,
+            UpdateStress | UpdateVelocityAndStress => self.keep_before_update(s),
             Advect => self.advect(s),
             // the grid's lattice and the forces applied to points do not depend on the
-            // parameters; Δt is held; contact follows its stage (`after`)
+            // parameters; Δt is held; contact and the grid-to-particle transfers follow
+            // their stages (`after`)
             FitGrid | AppliedForces | ContactForces | BarFaces | AdvanceTime | CheckEnergy
-            | CheckTimeStep => {}
+            | CheckTimeStep | UpdateVelocity => {}
         }
         Ok(())
     }
 
     /// The part of `stage`'s derivative that needs the stage's own decisions: contact the
     /// candidates its search found, the contact loads of a force map the nodal masses it
-    /// mapped (which nodes share a load).
-    fn after(&mut self, stage: Stage, s: &Solver<D>) {
+    /// mapped (which nodes share a load), the material update the run's own return
+    /// (solved once, in the stage).
+    fn after(&mut self, stage: Stage, s: &Solver<D>) -> Result<(), SimulationError> {
         match stage {
             Stage::ContactForces => self.contact(s),
             Stage::MapMassMomentumForce | Stage::MapForce => self.add_surface_loads(s),
+            Stage::UpdateVelocity => self.gather(s, true, false)?,
+            Stage::UpdateStress => self.gather(s, false, true)?,
+            Stage::UpdateVelocityAndStress => self.gather(s, true, true)?,
             _ => {}
+        }
+        Ok(())
+    }
+
+    /// Keep the real F and history that the stress update is about to replace.
+    fn keep_before_update(&mut self, s: &Solver<D>) {
+        let (f, state) = &mut self.before_update;
+        f.clear();
+        f.extend_from_slice(&s.particles.deformation);
+        state.clear();
+        for block in &s.blocks {
+            state.extend_from_slice(&block.state);
         }
     }
 
@@ -362,7 +381,10 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
     }
 
     /// Derivatives of the grid-to-particle transfer (algorithms 11-12): v and ṽ with
-    /// `motion`, F, σ, V and history with `deformation`, point by point in parallel.
+    /// `motion`, F, σ, V and history with `deformation`, point by point in parallel, after
+    /// the transfer itself: the nodes are as it read them, the real F and history before
+    /// it are kept (`keep_before_update`), and the material's update takes the return the
+    /// run solved (`SeededModel::update`).
     fn gather(
         &mut self,
         s: &Solver<D>,
@@ -382,6 +404,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             stress,
             volume,
             state,
+            before_update: (f_before, state_before),
             nodes,
             stencils,
             ..
@@ -419,11 +442,12 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                         &l,
                         &v_grid,
                         (&x, &s.particles.reference_position[i]),
-                        &join_all(&s.particles.deformation[i], f),
+                        &join_all(&f_before[i], f),
                         s.dt,
                     );
-                    let old = join_state(&block.state[i - block.range.start], st);
-                    let (sigma_new, state_new) = match models[b].update(&f_new, s.dt, &old) {
+                    let old = join_state(&state_before[i], st);
+                    let real = &block.state[i - block.range.start];
+                    let (sigma_new, state_new) = match models[b].update(&f_new, s.dt, &old, real) {
                         Ok(new) => new,
                         Err(e) => return Some((i, Box::new(Cause::Material(e)))),
                     };
@@ -468,7 +492,7 @@ impl<const D: usize> Solver<D> {
         for &stage in self.settings.scheme.stages() {
             tangent.before(stage, self)?;
             self.run_stage(stage)?;
-            tangent.after(stage, self);
+            tangent.after(stage, self)?;
         }
         Ok(())
     }
