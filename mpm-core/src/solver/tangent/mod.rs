@@ -9,7 +9,9 @@
 //! `NodeSolve`, `interpolate`, `Kinematics::deformation`, `Deformation::with_viscosity`,
 //! the contact forces and the material's update in dual arithmetic, `SeededModel`). The
 //! part of a derivative that needs the stage's own decisions runs just after it: contact
-//! after its candidate search, the contact loads after the force map has the masses. Its
+//! after its candidate search, the contact loads after the force map has the masses, the
+//! grid-to-particle transfer after the run's material update (whose return it starts
+//! from; the real F and history before the update are kept for it). Its
 //! real parts are the stage's own numbers, so it takes every branch the run takes: the
 //! cell that holds a point, the nodes above the mass cutoff, where a one-sided wall acts,
 //! whether a point yields, whether a contact point sticks. What it gives is the
@@ -22,7 +24,7 @@
 //! and step (`Cause::NonFinite`), with the output up to there kept.
 //!
 //! Cost: one dual update per point and step (the return mapping by the implicit function
-//! theorem: one extra Newton step in dual arithmetic) and the transfers in P + 1 lanes.
+//! theorem: one Newton step in dual arithmetic from the run's converged return) and the transfers in P + 1 lanes.
 //! Memory: (P + 1) numbers for each real one of the state; no tape.
 //!
 //! Carried: linear, CPDI and cpGIMP weights (module `stencil`), penalty contact with
