@@ -429,3 +429,54 @@ fn a_kernel_the_pass_does_not_carry_is_refused_with_the_reason() {
     .unwrap();
     assert!(e.to_string().contains("wave speed"), "{e}");
 }
+
+/// The pass's transfers sum by slabs of node rows, each in index order: one thread and
+/// two give the same derivatives to the bit (CPDI, whose lists reach two cells' nodes, and
+/// penalty contact with friction).
+#[test]
+fn derivatives_are_the_same_on_one_thread_and_two() {
+    let model = copper();
+    let cpdi = Case {
+        kernel: ShapeFunction::Cpdi,
+        ..Case::new(Kinematics::Axisymmetric, Scheme::Musl)
+    };
+    let contact = Case {
+        floor: Floor::Rigid { friction: 0.2 },
+        ..Case::new(Kinematics::PlaneStrain, Scheme::Usf)
+    };
+    for case in [cpdi, contact] {
+        let derivatives = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let mut s = bar(&model, case);
+                let mut t = Tangent::new(&s, vec![seeded(&model, &FREE).unwrap()]).unwrap();
+                for _ in 0..200 {
+                    s.step_with(&mut t).unwrap();
+                }
+                let n = s.particles.len();
+                let eps = |i: usize| {
+                    let (x, sigma) = (t.position(&s, i), t.stress(&s, i));
+                    let mut all: Vec<f64> =
+                        x.iter().flat_map(|d| d.eps.0.unwrap().data.0[0]).collect();
+                    all.extend(sigma.iter().flat_map(|d| d.eps.0.unwrap().data.0[0]));
+                    all
+                };
+                (0..n).flat_map(eps).collect::<Vec<f64>>()
+            })
+        };
+        let (one, two) = (derivatives(1), derivatives(2));
+        assert!(
+            one.iter().any(|d| *d != 0.0),
+            "{case:?}: the pass carries something"
+        );
+        assert!(
+            one.iter()
+                .zip(&two)
+                .all(|(a, b)| a.to_bits() == b.to_bits()),
+            "{case:?}: one and two threads differ"
+        );
+    }
+}

@@ -19,6 +19,7 @@ pub mod observer;
 mod scatter;
 mod scheme;
 mod settings;
+mod slabs;
 mod surface_loads;
 mod tangent;
 pub mod time_step;
@@ -79,9 +80,8 @@ struct Scratch<const D: usize> {
     grid_velocity: Vec<SVector<f64, D>>,
     /// Stress work increment of each particle [J].
     work: Vec<f64>,
-    /// Particles bucketed by slab, and the start of each slab's bucket.
-    order: Vec<u32>,
-    slab_start: Vec<usize>,
+    /// Particles bucketed by slab for the transfer to the grid.
+    slabs: slabs::Slabs,
     /// Shape-function weights of every particle for this step.
     weights: WeightCache<D>,
 }

@@ -1,8 +1,5 @@
-//! Particle-to-grid transfer (algorithm 9), in parallel without locks: particles are
-//! bucketed into slabs of node rows along the last axis by their lowest node; slabs of one
-//! colour (even or odd) touch disjoint node ranges (a slab is at least support − 1 rows
-//! wide, so a point reaches at most into the next slab), and each slab adds its
-//! particles in index order, so the sums do not depend on the number of threads.
+//! Particle-to-grid transfer (algorithm 9), in parallel without locks and the same on any
+//! number of threads (module `slabs`).
 
 use super::Solver;
 use crate::grid::Node;
@@ -44,38 +41,16 @@ impl Transfer {
     };
 }
 
-/// Particles bucketed into slabs of `width` node rows along the last axis.
-struct Slabs {
-    width: usize,
-    count: usize,
-}
-
 impl<const D: usize> Solver<D> {
     /// Particle-to-grid transfer of the chosen quantities (algorithm 9), lock-free and
-    /// deterministic (see the module notes).
+    /// deterministic (module `slabs`).
     pub(super) fn scatter(&mut self, t: Transfer) {
         self.clear_nodes(t);
-        let slabs = self.bucket_by_slab();
-        let last = D - 1;
-        let stride = self.grid.strides[last];
-        let support = self.scratch.weights.support();
+        self.bucket_by_slab();
+        let stride = self.grid.strides[D - 1];
         for colour in 0..2 {
-            let mut parts: Vec<(usize, usize, &mut [Node<D>])> = Vec::new();
-            let mut rest: &mut [Node<D>] = &mut self.grid.nodes;
-            let mut consumed = 0;
-            for k in (colour..slabs.count).step_by(2) {
-                // node rows slab k's points reach: k w .. (k + 1) w + support − 2
-                let start = k * slabs.width * stride;
-                let end =
-                    (((k + 1) * slabs.width + support - 1) * stride).min(consumed + rest.len());
-                let tail = std::mem::take(&mut rest);
-                let (_, tail) = tail.split_at_mut(start - consumed);
-                let (mine, tail) = tail.split_at_mut(end - start);
-                rest = tail;
-                consumed = end;
-                parts.push((k, start, mine));
-            }
             let s = &self.scratch;
+            let parts = s.slabs.parts(&mut self.grid.nodes, colour, stride);
             let sources = Sources {
                 p: &self.particles,
                 force: &s.force,
@@ -85,7 +60,7 @@ impl<const D: usize> Solver<D> {
             };
             let cut = parallel::light(self.particles.len()).per_item();
             parallel::for_each(parts.into_par_iter(), cut, |(k, start, nodes)| {
-                for &i in &s.order[s.slab_start[k]..s.slab_start[k + 1]] {
+                for &i in s.slabs.points(k) {
                     sources.add(i as usize, t, start, nodes);
                 }
             });
@@ -111,36 +86,15 @@ impl<const D: usize> Solver<D> {
         });
     }
 
-    /// Stable counting sort of the particles by the slab of their lowest node.
-    /// Same-colour slabs are a slab apart, so they touch disjoint nodes when the width is
-    /// at least support − 1 node rows.
-    fn bucket_by_slab(&mut self) -> Slabs {
+    /// The particles in slabs by their lowest node (module `slabs`).
+    fn bucket_by_slab(&mut self) {
         let last = D - 1;
         let s = &mut self.scratch;
-        let support = s.weights.support();
-        let rows = self.grid.dims[last] + 1 - support;
-        let width = rows.div_ceil(32).max(support - 1).max(1);
-        let count = rows.div_ceil(width);
         let stride = self.grid.strides[last];
         let weights = &s.weights;
-        let slab_of = |i: usize| weights.lowest(i) / stride / width;
-        let n = self.particles.len();
-        s.slab_start.clear();
-        s.slab_start.resize(count + 1, 0);
-        for i in 0..n {
-            s.slab_start[slab_of(i) + 1] += 1;
-        }
-        for k in 0..count {
-            s.slab_start[k + 1] += s.slab_start[k];
-        }
-        s.order.resize(n, 0);
-        let mut next = s.slab_start.clone();
-        for i in 0..n {
-            let k = slab_of(i);
-            s.order[next[k]] = i as u32;
-            next[k] += 1;
-        }
-        Slabs { width, count }
+        let rows = (self.grid.dims[last], weights.support());
+        s.slabs
+            .bucket(self.particles.len(), rows, |i| weights.lowest(i) / stride);
     }
 }
 

@@ -41,9 +41,11 @@ mod stencil;
 use super::gather::{earlier, interpolate, Deformation, Failure};
 use super::grid_solve::{NodalUpdate, NodeSolve};
 use super::scatter::{PointShare, Transfer};
+use super::slabs::Slabs;
 use super::{Solver, Stage};
 use crate::failure::{Cause, SimulationError};
 use crate::grid::Node;
+use crate::parallel;
 use crate::shape::ShapeFunction;
 use contact::DualLoad;
 use materials::ad::eps;
@@ -82,6 +84,8 @@ pub struct Tangent<const D: usize, const P: usize> {
     kernels: Vec<SmoothKernel>,
     /// The weights of this step, evaluated by its first transfer.
     stencils: DualStencils<D, P>,
+    /// The points in slabs by the lowest node of their weights, for the transfers.
+    slabs: Slabs,
     /// Attachment point of each point in contact with each rigid body (by body, then
     /// point index; body frame), real parts the run's as the contact stage left them.
     attachment: Vec<Vec<Option<SVector<Dual<P>, D>>>>,
@@ -229,6 +233,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             before_update: (Vec::with_capacity(n), Vec::with_capacity(n)),
             nodes: Vec::new(),
             stencils: DualStencils::new(n, &kernels),
+            slabs: Slabs::default(),
             kernels,
             attachment: vec![vec![None; n]; solver.rigid.len()],
             loads: Vec::new(),
@@ -322,12 +327,18 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
         }
     }
 
-    /// Derivatives of the transfer `t` (algorithm 9), point by point in index order.
+    /// Derivatives of the transfer `t` (algorithm 9), in parallel by slabs of node rows,
+    /// each slab's points in index order (module `slabs`: the same sums on any number of
+    /// threads).
     fn map(&mut self, s: &Solver<D>, t: Transfer) {
         if t.mass {
             self.evaluate_weights(s);
             self.nodes.clear();
             self.nodes.resize(s.grid.nodes.len(), Node::zero());
+            let stride = s.grid.strides[D - 1];
+            let rows = (s.grid.dims[D - 1], self.stencils.support(stride));
+            let stencils = &self.stencils;
+            (self.slabs).bucket(s.particles.len(), rows, |i| stencils.lowest(i) / stride);
         }
         for n in &mut self.nodes {
             if t.momentum {
@@ -337,25 +348,42 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                 n.force = SVector::zeros();
             }
         }
-        let p = &s.particles;
-        for i in 0..p.len() {
-            let x = self.position(s, i);
-            let mut external = (s.scratch.force[i] + s.settings.body_force * p.mass[i]).map(c);
-            if let Some(k) = self.condition_stiffness.get(i) {
-                external += k.map(c) * self.position[i].map(|x| Dual::new(0.0, x.eps));
-            }
-            let share = PointShare::new(
-                p.mass[i],
-                &self.velocity(s, i),
-                external,
-                (&self.stress(s, i), self.volume(s, i), &x),
-                s.settings.kinematics,
+        let mut nodes = std::mem::take(&mut self.nodes);
+        for colour in 0..2 {
+            let parts = self.slabs.parts(&mut nodes, colour, s.grid.strides[D - 1]);
+            parallel::for_each(
+                parts.into_par_iter(),
+                parallel::MATERIAL,
+                |(k, start, nodes)| {
+                    for &i in self.slabs.points(k) {
+                        let i = i as usize;
+                        let share = self.share(s, i);
+                        let (node, n, grad) = self.stencils.of(i);
+                        for k in 0..node.len() {
+                            share.add_to(&mut nodes[node[k] as usize - start], t, n[k], &grad[k]);
+                        }
+                    }
+                },
             );
-            let (node, n, grad) = self.stencils.of(i);
-            for k in 0..node.len() {
-                share.add_to(&mut self.nodes[node[k] as usize], t, n[k], &grad[k]);
-            }
         }
+        self.nodes = nodes;
+    }
+
+    /// What point `i` brings to the nodes, with its derivatives.
+    fn share(&self, s: &Solver<D>, i: usize) -> PointShare<D, Dual<P>> {
+        let p = &s.particles;
+        let x = self.position(s, i);
+        let mut external = (s.scratch.force[i] + s.settings.body_force * p.mass[i]).map(c);
+        if let Some(k) = self.condition_stiffness.get(i) {
+            external += k.map(c) * self.position[i].map(|x| Dual::new(0.0, x.eps));
+        }
+        PointShare::new(
+            p.mass[i],
+            &self.velocity(s, i),
+            external,
+            (&self.stress(s, i), self.volume(s, i), &x),
+            s.settings.kinematics,
+        )
     }
 
     /// Derivatives of the grid solve (algorithm 10) and the velocity conditions.

@@ -89,6 +89,25 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
         )
     }
 
+    /// Point `i`'s lowest node number.
+    pub(super) fn lowest(&self, i: usize) -> usize {
+        let (node, _, _) = self.of(i);
+        node.iter().min().map_or(0, |&n| n as usize)
+    }
+
+    /// Node rows (of `stride` nodes) that any point's entries span, at most.
+    pub(super) fn support(&self, stride: usize) -> usize {
+        let span = |i: usize| {
+            let (node, _, _) = self.of(i);
+            let rows = node.iter().map(|&n| n as usize / stride);
+            match (rows.clone().min(), rows.max()) {
+                (Some(low), Some(high)) => high - low + 1,
+                _ => 1,
+            }
+        };
+        (0..self.len.len()).map(span).max().unwrap_or(1).max(2)
+    }
+
     /// Evaluate point `i` at x with F and reference half-widths `half` on `grid`.
     pub(super) fn fill(
         &mut self,
