@@ -28,10 +28,11 @@ impl Slabs {
         (node_rows, support): (usize, usize),
         lowest_row: impl Fn(usize) -> usize,
     ) {
-        // the rows a point's lowest node can be in
+        // about 32 slabs over the rows a full-support point's lowest node can be in; the
+        // slabs cover every row, since a point of smaller reach can start higher
         let rows = (node_rows + 1).saturating_sub(support).max(1);
         self.width = rows.div_ceil(32).max(support - 1).max(1);
-        self.count = rows.div_ceil(self.width);
+        self.count = node_rows.max(1).div_ceil(self.width);
         self.support = support;
         let slab_of = |i: usize| lowest_row(i) / self.width;
         self.start.clear();
@@ -80,5 +81,35 @@ impl Slabs {
     /// The points of slab `k`, in index order.
     pub(super) fn points(&self, k: usize) -> &[u32] {
         &self.order[self.start[k]..self.start[k + 1]]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Slabs;
+
+    /// A point of small reach whose lowest node is the grid's top row lands in a slab, and
+    /// the slabs of one colour get disjoint node ranges that hold each of their points' rows.
+    #[test]
+    fn every_lowest_row_has_a_slab_and_its_rows() {
+        let (node_rows, support, stride) = (40, 4, 3);
+        let lowest = [0, 5, 17, 36, 39, 38, 12];
+        let mut slabs = Slabs::default();
+        slabs.bucket(lowest.len(), (node_rows, support), |i| lowest[i]);
+        let mut nodes = vec![0u8; node_rows * stride];
+        let mut seen = Vec::new();
+        for colour in 0..2 {
+            for (k, start, mine) in slabs.parts(&mut nodes, colour, stride) {
+                for &i in slabs.points(k) {
+                    let i = i as usize;
+                    let reach = (support.min(node_rows - lowest[i])) * stride;
+                    assert!(lowest[i] * stride >= start);
+                    assert!(lowest[i] * stride + reach <= start + mine.len());
+                    seen.push(i);
+                }
+            }
+        }
+        seen.sort();
+        assert_eq!(seen, (0..lowest.len()).collect::<Vec<_>>());
     }
 }
