@@ -28,12 +28,12 @@ fn scene() -> Option<(ShpbScene, ElastoPlastic)> {
     Some((s, material))
 }
 
-/// The record's model at `layers` points along (measured-velocity drive, CPDI, μ = 0.1),
-/// compared on F1 and F2 at every `thin`-th plateau sample.
-fn model(layers: usize, thin: usize) -> Option<(MpmShpb, ElastoPlastic)> {
+/// The record's model at `layers` points along (CPDI, μ = 0.1) with `drive`, compared on
+/// F1 and F2 at every `thin`-th plateau sample.
+fn model(drive: Drive, layers: usize, thin: usize) -> Option<(MpmShpb, ElastoPlastic)> {
     let (mut s, material) = scene()?;
     s.settings.layers = layers;
-    s.settings.drive = Drive::MeasuredVelocity;
+    s.settings.drive = drive;
     let times: Vec<f64> = s.plateau_times().into_iter().step_by(thin).collect();
     let m = MpmShpb::new(
         s.model(&material).unwrap(),
@@ -51,7 +51,21 @@ fn model(layers: usize, thin: usize) -> Option<(MpmShpb, ElastoPlastic)> {
 /// fit needs against the model's events are off by up to 0.46 and 0.22 at single samples.
 #[test]
 fn the_exact_jacobian_of_the_face_forces_matches_central_differences() {
-    let Some((m, material)) = model(10, 10) else {
+    check(Drive::MeasuredVelocity);
+}
+
+/// The same with the incident-pulse drive: both faces move with elastic bars, driven by
+/// the contact force, so the derivatives also pass through the faces' displacements.
+/// Measured on the 2-core VM: at most 1.3e-7 of the column (A).
+#[test]
+fn the_pulse_drive_jacobian_through_the_elastic_bars_matches_central_differences() {
+    check(Drive::IncidentPulse);
+}
+
+/// The exact Jacobian of F1 and F2 against the closer central difference, each column
+/// relative to its largest entry.
+fn check(drive: Drive) {
+    let Some((m, material)) = model(drive, 10, 10) else {
         return;
     };
     let (y, _) = m.predict_with_jacobian(&material, &FREE).unwrap();
@@ -60,23 +74,7 @@ fn the_exact_jacobian_of_the_face_forces_matches_central_differences() {
         assert!(c.scale > 1e3, "F depends on {}: {} N", c.parameter, c.scale);
         // round-off amplified through the run is ~1e-6 of the column; a missing term of
         // the derivative is off by 1e-2 or more
+        eprintln!("{drive:?} {}: {:.1e}", c.parameter, c.best());
         assert!(c.best() < 3e-5, "{c:?}");
     }
-}
-
-/// The incident-pulse drive moves the faces with elastic bars, which the pass does not
-/// carry yet: refused with the reason.
-#[test]
-fn the_pulse_drive_is_refused_with_the_reason() {
-    let Some((mut s, material)) = scene() else {
-        return;
-    };
-    s.settings.layers = 4;
-    let e = s
-        .model(&material)
-        .unwrap()
-        .run_with_derivatives(&material, 293.0, &["A"], 1e-6)
-        .err()
-        .unwrap();
-    assert!(e.to_string().contains("elastic bar"), "{e}");
 }

@@ -168,7 +168,7 @@ fn mpm_set_text() -> String {
 }
 
 /// A set file's MPM fields: `drive` names a drive of the model and belongs to the MPM
-/// level; `jacobian = "exact"` needs a drive and kernel the derivative pass carries; the
+/// level; `jacobian = "exact"` needs a kernel the derivative pass carries; the
 /// error names the field (`{:#}` prints the set file and experiment).
 #[test]
 fn a_set_file_with_a_bad_drive_names_it() {
@@ -190,10 +190,6 @@ fn a_set_file_with_a_bad_drive_names_it() {
         (
             "level = \"mpm-axisymmetric\"\njacobian = \"analytic\"",
             "`experiment.jacobian`: \"analytic\", expected \"finite-difference\" or \"exact\"",
-        ),
-        (
-            "level = \"mpm-axisymmetric\"\njacobian = \"exact\"\ndrive = \"incident-pulse\"",
-            "needs drive = \"measured-velocity\"",
         ),
         (
             "level = \"mpm-axisymmetric\"\njacobian = \"exact\"\nshape_function = \"ugimp\"",

@@ -15,6 +15,7 @@
 
 use materials::seeded::seeded;
 use materials::{load_elasto_plastic, ElastoPlastic, Model};
+use mpm_core::bar::BarEnd;
 use mpm_core::discretize::{fill, Geometry};
 use mpm_core::kinematics::Kinematics;
 use mpm_core::shape::ShapeFunction;
@@ -40,8 +41,18 @@ fn copper() -> ElastoPlastic {
 #[derive(Debug, Clone, Copy)]
 enum Floor {
     Wall,
-    Rigid { friction: f64 },
-    Springs { stiffness: f64 },
+    Rigid {
+        friction: f64,
+    },
+    Springs {
+        stiffness: f64,
+    },
+    /// The half-space is the face of an elastic bar (a transmitter bar, module `bar`) of
+    /// impedance Z [N s/m], which the contact force pushes down.
+    Bar {
+        friction: f64,
+        impedance: f64,
+    },
 }
 
 /// How a check runs: kinematics, scheme, shape functions and floor.
@@ -83,17 +94,16 @@ fn bar(model: &ElastoPlastic, case: Case) -> Solver<2> {
     s.set_half_size(block, Vector2::repeat(h / 4.0));
     match case.floor {
         Floor::Wall => s.velocity_bcs.push(VelocityBc::wall(1, 0.0, true)),
-        Floor::Rigid { friction } => {
-            // κ = ω² m with ω = c / s, as stiff as a layer of points (c ≈ 4.7 km/s)
-            let omega = 4.7e3 / (h / 2.0);
-            let mut floor = RigidBody::half_space(
-                "floor",
-                Vector2::zeros(),
-                Vector2::new(0.0, 1.0),
-                omega * omega,
-                friction,
-            );
-            floor.penalty_per_mass = true;
+        Floor::Rigid { friction } => s.add_rigid_body(rigid_floor(h, friction)),
+        Floor::Bar {
+            friction,
+            impedance,
+        } => {
+            let mut floor = rigid_floor(h, friction);
+            // a steel bar's wave speed, E_b A_b = Z c0
+            let c0 = 5.0e3;
+            let axis = Vector2::new(0.0, 1.0);
+            floor.motion.bar = Some(BarEnd::new(axis, impedance * c0, c0, None));
             s.add_rigid_body(floor);
         }
         Floor::Springs { stiffness } => {
@@ -108,6 +118,22 @@ fn bar(model: &ElastoPlastic, case: Case) -> Solver<2> {
     }
     s.initialize();
     s
+}
+
+/// The rigid half-space y < 0 with penalty contact and Coulomb friction μ = `friction`,
+/// for points spaced h/2: κ = ω² m with ω = c / (h/2), as stiff as a layer of points
+/// (c ≈ 4.7 km/s).
+fn rigid_floor(h: f64, friction: f64) -> RigidBody<2> {
+    let omega = 4.7e3 / (h / 2.0);
+    let mut floor = RigidBody::half_space(
+        "floor",
+        Vector2::zeros(),
+        Vector2::new(0.0, 1.0),
+        omega * omega,
+        friction,
+    );
+    floor.penalty_per_mass = true;
+    floor
 }
 
 /// Observed after `steps` steps: the top outer point's height and radius, the bottom
@@ -249,6 +275,33 @@ fn penalty_contact_with_friction_derivatives_match_central_differences() {
         floor: Floor::Rigid { friction: 0.2 },
         ..Case::new(Kinematics::Axisymmetric, Scheme::Musl)
     };
+    check(case, 300);
+}
+
+/// CPDI onto the face of an elastic bar with friction μ = 0.1, the transmitter face of
+/// an SHPB model: the face moves with the contact force and the contact springs, so its
+/// displacement carries the derivatives on to the points. The bar's impedance
+/// (Z = 20 N s/m per radian) lets the face reach a tenth of the bar's own travel.
+#[test]
+fn a_face_on_an_elastic_bar_derivatives_match_central_differences() {
+    let case = Case {
+        kernel: ShapeFunction::Cpdi,
+        floor: Floor::Bar {
+            friction: 0.1,
+            impedance: 20.0,
+        },
+        ..Case::new(Kinematics::Axisymmetric, Scheme::Musl)
+    };
+    let mut s = bar(&copper(), case);
+    for _ in 0..300 {
+        s.step().unwrap();
+    }
+    let face = s.rigid[0].body.motion.bar.as_ref().unwrap().displacement;
+    let travel = 150.0 * s.time;
+    assert!(
+        face < -0.1 * travel,
+        "the face moves: {face:e} m against the bar's {travel:e} m"
+    );
     check(case, 300);
 }
 

@@ -3,8 +3,9 @@
 //! step, from the derivatives of each face's contact force, which the pass carries
 //! through the specimen's points, the CPDI weights and the penalty contact with friction.
 //!
-//! Carried: the measured-velocity drive (faces of prescribed motion); the incident-pulse
-//! drive, whose faces move with elastic bars, is refused with the reason. The material
+//! Both drives: faces of prescribed motion (measured velocity) and faces on elastic bars
+//! (incident pulse), whose displacements carry the derivatives of the contact forces
+//! that drive them. The material
 //! starts at the test temperature (`Preheated`); free parameters that change ρ0 or the
 //! wave speed are refused (Δt is held).
 

@@ -35,11 +35,11 @@ pub struct Args {
     /// Carry exact derivatives along these material parameters (e.g. A,B,N,C,M; at most
     /// 6). MPM scenes (instead of the scene's `output.derivatives`): the rigid bodies'
     /// contact-force sensitivities p ∂f/∂p and the control points' p ∂x/∂p to
-    /// derivatives.csv, the points' charted in derivatives.png. SHPB scenes
-    /// (drive = "measured-velocity"): the face forces' sensitivities, scaled by the
-    /// standard errors of the --params report (else by the values).
-    /// Needs linear, CPDI or cpGIMP shape functions; rigid bodies of prescribed motion and
-    /// springs are carried, faces on elastic bars not yet.
+    /// derivatives.csv, the points' charted in derivatives.png. SHPB scenes (either
+    /// drive): the face forces' sensitivities, scaled by the standard errors of the
+    /// --params report (else by the values). Needs linear, CPDI or cpGIMP shape
+    /// functions; rigid bodies of prescribed motion, faces on elastic bars and springs
+    /// are carried.
     #[arg(long, value_delimiter = ',')]
     pub derivatives: Vec<String>,
 }

@@ -438,9 +438,6 @@ fn mpm_block_model(
         None => Jacobian::FiniteDifference,
     };
     if jacobian == Jacobian::Exact {
-        if settings.drive != Drive::MeasuredVelocity {
-            return Err(field("jacobian", "\"exact\" needs drive = \"measured-velocity\": the derivatives are not yet carried through faces on elastic bars"));
-        }
         if !mpm_core::solver::carries(settings.shape_function) {
             return Err(field(
                 "jacobian",

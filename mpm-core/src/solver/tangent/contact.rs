@@ -5,13 +5,40 @@
 //! go to the grid as in the run (`surface_loads::load_shares`), and the body's total
 //! force, the observed face force of an SHPB model, is their sum.
 //!
+//! A face on an elastic bar (module `bar`) moves along its axis e with
+//! v = (2 c0 ε_in − f/Z + (k_c Δt/Z) v_s) / (1 + k_c Δt/Z), so its displacement u carries
+//! the derivatives of the compressive face force f and of the springs' mean velocity
+//! v_s = Σ k_i v_i·e / Σ k_i (k_c and the springs in contact follow the run):
+//! du ← du + Δt (−df/Z + (k_c Δt/Z) dv_s) / (1 + k_c Δt/Z). The face's pose moves by
+//! du e, which the contact sees as the points moved back by it.
+//!
 //! Whether a point touches and whether it sticks or slides follow the run.
 
-use super::{join_all, Dual, Tangent};
+use super::{join, join_all, Dual, Tangent};
 use crate::contact::{candidate_force, Candidate, ContactForce};
 use crate::solver::surface_loads::load_shares;
 use crate::solver::Solver;
+use materials::scalar::c;
 use nalgebra::SVector;
+
+/// The derivatives of a face's state on its elastic bar (dual parts only).
+#[derive(Clone, Copy)]
+pub(super) struct FaceDerivatives<const P: usize> {
+    /// Displacement u along the bar's axis [m].
+    displacement: Dual<P>,
+    /// Mean velocity v_s of the points in contact along the axis [m/s].
+    springs_velocity: Dual<P>,
+}
+
+impl<const P: usize> FaceDerivatives<P> {
+    /// A face at rest, or a body of prescribed motion.
+    pub(super) fn at_rest() -> Self {
+        FaceDerivatives {
+            displacement: Dual::from_re(0.0),
+            springs_velocity: Dual::from_re(0.0),
+        }
+    }
+}
 
 /// A contact force on point `particle` with its derivatives, acting at `at` [m].
 pub(super) struct DualLoad<const D: usize, const P: usize> {
@@ -28,11 +55,21 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
         let n = s.particles.len();
         for (b, rc) in s.rigid.iter().enumerate() {
             let pose = rc.body.motion.pose(s.time);
+            let bar_axis = rc
+                .body
+                .motion
+                .bar
+                .as_ref()
+                .map(|bar| bar.axis.map(c::<Dual<P>>));
+            // the face's translation with its derivatives is its real pose's plus `shift`
+            let shift =
+                bar_axis.clone().unwrap_or_else(SVector::zeros) * self.faces[b].displacement;
             let mut old = std::mem::replace(&mut self.attachment[b], vec![None; n]);
             let mut total = SVector::zeros();
+            let (mut stiffness, mut springs_velocity) = (0.0, Dual::from_re(0.0));
             let c = &rc.contact;
             for (&i, real) in c.candidates.iter().zip(&c.attachment) {
-                let (x, f) = (self.position(s, i), self.deformation(s, i));
+                let (x, f) = (self.position(s, i) - &shift, self.deformation(s, i));
                 let point = Candidate {
                     x: &x,
                     mass: s.particles.mass[i],
@@ -48,14 +85,52 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                     self.attachment[b][i] = Some(join_all(real, dual));
                     self.loads.push(DualLoad {
                         particle: i,
-                        at,
+                        at: at + &shift,
                         force,
                     });
                     total -= force;
+                    if let Some(axis) = &bar_axis {
+                        let k = rc.body.penalty_of(s.particles.mass[i]);
+                        stiffness += k;
+                        springs_velocity += self.velocity(s, i).dot(axis) * k;
+                    }
                 }
             }
             self.contact_force[b] = total;
+            if stiffness > 0.0 {
+                self.faces[b].springs_velocity = springs_velocity / stiffness;
+            } else {
+                self.faces[b].springs_velocity = Dual::from_re(0.0);
+            }
         }
+    }
+
+    /// After the bar faces moved: the derivatives of each face's displacement (module
+    /// notes), from its contact force and springs of this step.
+    pub(super) fn bar_faces(&mut self, s: &Solver<D>) {
+        for (b, rc) in s.rigid.iter().enumerate() {
+            let Some(bar) = &rc.body.motion.bar else {
+                continue;
+            };
+            let z = bar.impedance();
+            let implicit = rc.contact.springs.stiffness * s.dt / z;
+            let axis = bar.axis.map(c::<Dual<P>>);
+            let face = &mut self.faces[b];
+            let force = -self.contact_force[b].dot(&axis);
+            let velocity =
+                (force * (-1.0 / z) + face.springs_velocity * implicit) / (1.0 + implicit);
+            face.displacement = join(0.0, face.displacement + velocity * s.dt);
+        }
+    }
+
+    /// Displacement of rigid body `body`'s face along its elastic bar [m] with its
+    /// derivatives (zero for a body of prescribed motion).
+    pub fn face_displacement(&self, s: &Solver<D>, body: usize) -> Dual<P> {
+        let bar = s.rigid[body].body.motion.bar.as_ref();
+        join(
+            bar.map_or(0.0, |bar| bar.displacement),
+            self.faces[body].displacement,
+        )
     }
 
     /// Add the contact loads to the nodal forces (after the point forces of a force map),

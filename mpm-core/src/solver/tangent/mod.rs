@@ -28,12 +28,13 @@
 //! transfers in P + 1 lanes. Memory: (P + 1) numbers for each real one of the state; no tape.
 //!
 //! Carried: linear, CPDI and cpGIMP weights (module `stencil`), penalty contact with
-//! rigid bodies of prescribed motion (module `contact`), point conditions whose force on a
+//! rigid bodies of prescribed motion and with faces on elastic bars, whose displacement
+//! follows the contact force (module `contact`), point conditions whose force on a
 //! point depends on its position alone (springs: df = (∂f/∂x) dx, with ∂f/∂x from
 //! `PointCondition::position_jacobian`). Held fixed, and so refused as
 //! free parameters: anything that changes ρ0 (the masses) or the wave speed (Δt). Not
-//! carried yet, and refused with the reason: the GIMP kernels and hexahedral CPDI, faces
-//! on elastic bars, and other point conditions.
+//! carried yet, and refused with the reason: the GIMP kernels and hexahedral CPDI, and
+//! other point conditions.
 
 mod contact;
 mod stencil;
@@ -47,7 +48,7 @@ use crate::failure::{Cause, SimulationError};
 use crate::grid::Node;
 use crate::parallel;
 use crate::shape::ShapeFunction;
-use contact::DualLoad;
+use contact::{DualLoad, FaceDerivatives};
 use materials::ad::eps;
 use materials::scalar::c;
 use materials::seeded::{Dual, SeededModel};
@@ -93,6 +94,9 @@ pub struct Tangent<const D: usize, const P: usize> {
     loads: Vec<DualLoad<D, P>>,
     /// Each rigid body's total contact force of this step.
     contact_force: Vec<SVector<Dual<P>, D>>,
+    /// Each rigid body's displacement along its elastic bar and the mean velocity v_s
+    /// of its contact springs (module `bar`; zero for a body of prescribed motion).
+    faces: Vec<FaceDerivatives<P>>,
     /// ∂f/∂x of the point conditions' forces on each point, summed over the conditions
     /// (by point index; empty without conditions).
     condition_stiffness: Vec<SMatrix<f64, D, D>>,
@@ -205,12 +209,6 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                 ));
             }
         }
-        if let Some(rc) = solver.rigid.iter().find(|rc| rc.body.motion.bar.is_some()) {
-            return refuse(format!(
-                "the face `{}` moves with an elastic bar, which the pass does not carry",
-                rc.body.name
-            ));
-        }
         let n = solver.particles.len();
         let condition_stiffness = condition_stiffness(solver).map_err(Unsupported)?;
         let zero = SVector::zeros();
@@ -238,6 +236,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             attachment: vec![vec![None; n]; solver.rigid.len()],
             loads: Vec::new(),
             contact_force: vec![SVector::zeros(); solver.rigid.len()],
+            faces: vec![FaceDerivatives::at_rest(); solver.rigid.len()],
             condition_stiffness,
         })
     }
@@ -280,8 +279,8 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             UpdateStress | UpdateVelocityAndStress => self.keep_before_update(s),
             Advect => self.advect(s),
             // the grid's lattice and the forces applied to points do not depend on the
-            // parameters; Δt is held; contact and the grid-to-particle transfers follow
-            // their stages (`after`)
+            // parameters; Δt is held; contact, the bar faces and the grid-to-particle
+            // transfers follow their stages (`after`)
             FitGrid | AppliedForces | ContactForces | BarFaces | AdvanceTime | CheckEnergy
             | CheckTimeStep | UpdateVelocity => {}
         }
@@ -295,6 +294,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
     fn after(&mut self, stage: Stage, s: &Solver<D>) -> Result<(), SimulationError> {
         match stage {
             Stage::ContactForces => self.contact(s),
+            Stage::BarFaces => self.bar_faces(s),
             Stage::MapMassMomentumForce | Stage::MapForce => self.add_surface_loads(s),
             Stage::UpdateVelocity => self.gather(s, true, false)?,
             Stage::UpdateStress => self.gather(s, false, true)?,
