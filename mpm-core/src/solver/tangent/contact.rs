@@ -97,11 +97,10 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                 }
             }
             self.contact_force[b] = total;
-            if stiffness > 0.0 {
-                self.faces[b].springs_velocity = springs_velocity / stiffness;
-            } else {
-                self.faces[b].springs_velocity = Dual::from_re(0.0);
-            }
+            self.faces[b].springs_velocity = match stiffness > 0.0 {
+                true => springs_velocity / stiffness,
+                false => Dual::from_re(0.0),
+            };
         }
     }
 
@@ -117,20 +116,9 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             let axis = bar.axis.map(c::<Dual<P>>);
             let face = &mut self.faces[b];
             let force = -self.contact_force[b].dot(&axis);
-            let velocity =
-                (force * (-1.0 / z) + face.springs_velocity * implicit) / (1.0 + implicit);
+            let velocity = (-force / z + face.springs_velocity * implicit) / (1.0 + implicit);
             face.displacement = join(0.0, face.displacement + velocity * s.dt);
         }
-    }
-
-    /// Displacement of rigid body `body`'s face along its elastic bar [m] with its
-    /// derivatives (zero for a body of prescribed motion).
-    pub fn face_displacement(&self, s: &Solver<D>, body: usize) -> Dual<P> {
-        let bar = s.rigid[body].body.motion.bar.as_ref();
-        join(
-            bar.map_or(0.0, |bar| bar.displacement),
-            self.faces[body].displacement,
-        )
     }
 
     /// Add the contact loads to the nodal forces (after the point forces of a force map),
