@@ -405,8 +405,9 @@ mod tests {
         (at(plastic), old)
     }
 
-    /// A step that yields by so little that α_n + Δα rounds to α_n: the implicit step takes ln Δα from the
-    /// return itself, so the derivatives stay finite (from α − α_n they were ln 0).
+    /// A step that yields by so little that α_n + Δα rounds to α_n: the implicit step
+    /// takes ln Δα from the return itself, so the derivatives stay finite (from α − α_n
+    /// they were ln 0).
     #[test]
     fn a_step_that_yields_below_the_last_digit_of_alpha_keeps_finite_derivatives() {
         let (f, old) = onset_of_flow();
