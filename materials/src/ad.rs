@@ -1,29 +1,24 @@
-//! Derivatives by forward-mode AD (num-dual) of the generic model code: the consistent
-//! tangent dσ/dF and parameter sensitivities dσ/dp.
+//! Derivatives by forward-mode AD (`Dual` numbers) of the generic model code: the
+//! consistent tangent dσ/dF and parameter sensitivities dσ/dp.
 
+use crate::dual::Dual;
 use crate::error::MaterialError;
 use crate::material::{Model, State};
 use crate::scalar::c;
 use crate::tensor::M3;
-use nalgebra::{SMatrix, SVector};
-use num_dual::DualSVec64;
+use nalgebra::SMatrix;
 
 /// `v` as a dual number with unit derivative in direction `i`.
-pub fn seed<const N: usize>(v: f64, i: usize) -> DualSVec64<N> {
-    DualSVec64::from_re(v).derivative(i)
+pub fn seed<const N: usize>(v: f64, i: usize) -> Dual<N> {
+    Dual::seeded(v, i)
 }
 
 /// Parameter `name` of value `v`: seeded in direction k if it is `free[k]`, else constant.
-pub fn seed_named<const N: usize>(free: &[&str; N], name: &str, v: f64) -> DualSVec64<N> {
+pub fn seed_named<const N: usize>(free: &[&str; N], name: &str, v: f64) -> Dual<N> {
     match free.iter().position(|n| *n == name) {
         Some(k) => seed(v, k),
         None => c(v),
     }
-}
-
-/// The derivative part of `x` as a vector (zero if it carries none).
-pub fn eps<const N: usize>(x: &DualSVec64<N>) -> SVector<f64, N> {
-    x.eps.0.unwrap_or_else(SVector::zeros)
 }
 
 /// dσ_ij/dF_kl as a 9×9 matrix (row 3i+j, column 3k+l).
@@ -37,7 +32,7 @@ pub fn tangent<M: Model<f64>>(
     dt: f64,
     old: &State<f64>,
 ) -> Result<(M3<f64>, Tangent, State<f64>), MaterialError> {
-    type D9 = DualSVec64<9>;
+    type D9 = Dual<9>;
     let m = model.map_params(|_, v| c::<D9>(v));
     let fd = M3::from_fn(|i, j| seed::<9>(f[(i, j)], 3 * i + j));
     let old_d = old.map(c::<D9>);
@@ -45,7 +40,7 @@ pub fn tangent<M: Model<f64>>(
     let mut d = Tangent::zeros();
     for i in 0..3 {
         for j in 0..3 {
-            d.set_row(3 * i + j, &eps(&sigma[(i, j)]).transpose());
+            d.set_row(3 * i + j, &sigma[(i, j)].eps.transpose());
         }
     }
     Ok((sigma.map(|s| s.re), d, new.re()))
@@ -63,7 +58,7 @@ pub fn sensitivities<M: Model<f64>, const P: usize>(
     let (sigma, _) = m.update(&f.map(c), dt, &old.map(c))?;
     let mut out = [M3::zeros(); P];
     for (k, ds) in out.iter_mut().enumerate() {
-        *ds = sigma.map(|s| eps(&s)[k]);
+        *ds = sigma.map(|s| s.eps[k]);
     }
     Ok((sigma.map(|s| s.re), out))
 }

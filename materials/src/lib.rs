@@ -9,6 +9,7 @@ pub mod ad;
 pub mod any_model;
 pub mod conformance;
 pub mod driver;
+pub mod dual;
 pub mod elastic;
 pub mod error;
 pub mod expm;

@@ -5,13 +5,10 @@
 //! mapping differentiates by the implicit function theorem, module `plasticity`).
 
 use crate::ad::seed_named;
+pub use crate::dual::Dual;
 use crate::error::MaterialError;
 use crate::material::{Model, State};
 use crate::tensor::M3;
-use num_dual::DualSVec64;
-
-/// A dual number with derivatives in `P` directions (the free parameters of a fit).
-pub type Dual<const P: usize> = DualSVec64<P>;
 
 /// A model whose free parameters carry unit dual parts, one direction each: an update in
 /// dual arithmetic gives σ and the new state with their total derivatives along the

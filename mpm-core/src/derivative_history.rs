@@ -9,7 +9,6 @@
 
 use crate::output::{force_unit, AXES};
 use crate::solver::{RunError, Solver, Tangent, Unsupported};
-use materials::ad::eps;
 use materials::seeded::{
     for_directions, seeded_where_present, Dual, ForDirections, MAX_DIRECTIONS,
 };
@@ -151,7 +150,7 @@ impl Writer {
         let mut row = vec![format!("{:e}", solver.time)];
         let mut push = |q: &SVector<Dual<P>, D>| {
             for c in q.iter() {
-                let d = eps(c);
+                let d = c.eps;
                 row.extend((0..P).map(|k| format!("{:e}", d[k] * self.scales[k])));
             }
         };

@@ -11,7 +11,6 @@
 
 use super::{run::one_thread, Discretized, ShpbModel, ShpbRun, INCIDENT, SPECIMEN, TRANSMITTER};
 use anyhow::{anyhow, Result};
-use materials::ad::eps;
 use materials::plasticity::ElastoPlastic;
 use materials::preheated::Preheated;
 use materials::seeded::{for_directions, seeded, ForDirections};
@@ -115,9 +114,7 @@ impl ShpbModel {
     ) -> Vec<f64> {
         let axis = s.rigid[face].body.planes[0].normal;
         let force = tangent.contact_force(s, face);
-        let along = (0..D).fold(0.0 * eps(&force[0]), |sum, k| {
-            sum - eps(&force[k]) * axis[k]
-        });
+        let along = (0..D).fold(0.0 * force[0].eps, |sum, k| sum - force[k].eps * axis[k]);
         along.iter().map(|d| d * self.copies).collect()
     }
 }

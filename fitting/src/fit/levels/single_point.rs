@@ -10,7 +10,7 @@
 
 use crate::fit::levels::model::{ExperimentModel, Material};
 use anyhow::{anyhow, bail, Context, Result};
-use materials::ad::{eps, seed};
+use materials::ad::seed;
 use materials::driver::{run, LoadPath, Record};
 use materials::material::Model;
 use materials::preheated::{Preheated, STRETCH_PARAMETERS};
@@ -88,7 +88,7 @@ impl<O: Observable> SinglePoint<O> {
             None => c(v),
         });
         let out = self.evaluate(&seeded)?;
-        let jac = DMatrix::from_fn(out.len(), P, |i, k| eps(&out[i])[k]);
+        let jac = DMatrix::from_fn(out.len(), P, |i, k| out[i].eps[k]);
         Ok((out.iter().map(|x| x.re).collect(), jac))
     }
 

@@ -49,7 +49,6 @@ use crate::grid::Node;
 use crate::parallel;
 use crate::shape::ShapeFunction;
 use contact::{DualLoad, FaceDerivatives};
-use materials::ad::eps;
 use materials::scalar::c;
 use materials::seeded::{Dual, SeededModel};
 use materials::tensor::det;
@@ -154,7 +153,7 @@ fn join_state<const P: usize>(re: &State<f64>, d: &State<Dual<P>>) -> State<Dual
 /// the probe is one sum where a check of every entry costs the pass time.
 fn finite_derivatives<const P: usize>(sigma: &Matrix3<Dual<P>>, state: &State<Dual<P>>) -> bool {
     let probe = sigma.trace() + state.alpha + state.theta;
-    eps(&probe).iter().all(|d| d.is_finite())
+    probe.eps.iter().all(|d| d.is_finite())
 }
 
 /// Whether the pass carries shape functions `kernel`.
@@ -201,7 +200,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                     block.name, rho.re, block.material.density(), modulus.re, block.material.p_wave_modulus()
                 ));
             }
-            let depends = |x: Dual<P>| eps(&x).iter().any(|d| *d != 0.0);
+            let depends = |x: Dual<P>| x.eps.iter().any(|d| *d != 0.0);
             if depends(rho) || depends(modulus) {
                 return refuse(format!(
                     "a free parameter of body `{}` changes ρ0 or the wave speed, which set the masses and Δt; free only the flow-stress and thermal parameters",

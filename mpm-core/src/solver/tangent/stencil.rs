@@ -182,8 +182,18 @@ fn edges_and_inverse<M: Follow, const D: usize, const P: usize>(
         return None;
     }
     let r = M::edges(half, f);
-    let inv = r.try_inverse()?;
+    let inv = inverse(&r)?;
     Some((r, inv.transpose()))
+}
+
+/// R⁻¹ with its derivatives d(R⁻¹) = −R⁻¹ dR R⁻¹; its real part is the run's inverse of
+/// the real R, `None` where that is singular.
+fn inverse<const D: usize, const P: usize>(
+    r: &SMatrix<Dual<P>, D, D>,
+) -> Option<SMatrix<Dual<P>, D, D>> {
+    let real = r.map(|x| x.re).try_inverse()?.map(Dual::from_re);
+    let change = r.map(|x| Dual::new(0.0, x.eps));
+    Some(real - real * change * real)
 }
 
 /// The linear weights of a cell's 2ᴰ corners at local coordinates `xi` (x fastest).

@@ -13,7 +13,6 @@
 
 use super::taylor::{axisymmetric_bar, markers, measure, measure_real, COARSE, COPPER};
 use crate::verify::row::Row;
-use materials::ad::eps;
 use materials::seeded::seeded;
 use materials::{load_material, AnyModel, Model};
 use mpm_core::failure::SimulationError;
@@ -95,14 +94,14 @@ pub fn with_derivatives<const P: usize>(
         if solver.time >= history.len() as f64 * 1e-6 {
             let q = observe(&solver, &tangent);
             let scaled = q.map(|q| {
-                std::array::from_fn(|k| eps(&q)[k] * model.param(free[k]).unwrap_or(f64::NAN))
+                std::array::from_fn(|k| q.eps[k] * model.param(free[k]).unwrap_or(f64::NAN))
             });
             history.push((solver.time, scaled));
         }
     }
     let q = observe(&solver, &tangent);
     Ok(Derivatives {
-        exact: q.map(|q| eps(&q).into()),
+        exact: q.map(|q| q.eps.into()),
         history,
         wall: started.elapsed().as_secs_f64(),
     })
