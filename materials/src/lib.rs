@@ -1,6 +1,7 @@
 //! Finite-strain material models of thesis chapter 4, written once in generic scalar code
-//! so that `num-dual` gives consistent tangents and parameter sensitivities from the same
-//! source, plus a homogeneous single-material-point driver (MTest-like).
+//! so that dual numbers (`dual::Dual`, and `num-dual`'s where its helpers are used) give
+//! consistent tangents and parameter sensitivities from the same source, plus a
+//! homogeneous single-material-point driver (MTest-like).
 //!
 //! Units are SI throughout (Pa, K, kg/m³, s). Stress is Cauchy `sigma` unless named
 //! otherwise (`tau` Kirchhoff).

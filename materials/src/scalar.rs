@@ -1,5 +1,5 @@
-//! The scalar type every model is written in: `f64` for plain evaluation, a `num-dual`
-//! dual number for derivatives (DESIGN section 11).
+//! The scalar type every model is written in: `f64` for plain evaluation, a dual number
+//! for derivatives (`dual::Dual`, or a `num-dual` type; DESIGN section 11).
 
 use nalgebra::{ClosedAddAssign, ClosedDivAssign, ClosedMulAssign, ClosedSubAssign};
 use num_dual::DualNum;

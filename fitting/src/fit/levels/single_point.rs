@@ -4,9 +4,9 @@
 //! The exact Jacobian comes from running the same driver with parameters seeded as dual
 //! numbers: the driver and the return mapping differentiate their converged Newton solves
 //! by the implicit function theorem, so d(prediction)/d(parameter) is exact to round-off.
-//! `DualSVec64<P>` carries all P free parameters in one pass (P ≤ 8); `PerParameter`
-//! runs one `Dual64` pass per parameter (kept for the cost comparison in `mpw fit
-//! --compare`).
+//! `Dual<P>` (`materials::dual`) carries all P free parameters in one pass (P ≤ 8);
+//! `PerParameter` runs one `num-dual` `Dual64` pass per parameter (kept for the cost
+//! comparison in `mpw fit --compare`).
 
 use crate::fit::levels::model::{ExperimentModel, Material};
 use anyhow::{anyhow, bail, Context, Result};
@@ -34,7 +34,7 @@ pub trait Observable: Send + Sync {
 /// How the AD Jacobian is formed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum AdMode {
-    /// One driver pass with a `DualSVec64<P>` carrying all free parameters.
+    /// One driver pass with a `Dual<P>` carrying all free parameters.
     Vector,
     /// One `Dual64` driver pass per free parameter.
     PerParameter,
