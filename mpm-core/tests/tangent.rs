@@ -63,6 +63,8 @@ struct Case {
     scheme: Scheme,
     kernel: ShapeFunction,
     floor: Floor,
+    /// Fraction of PIC in the velocity update.
+    pic_fraction: f64,
 }
 
 impl Case {
@@ -72,6 +74,7 @@ impl Case {
             scheme,
             kernel: ShapeFunction::Linear,
             floor: Floor::Wall,
+            pic_fraction: 0.0,
         }
     }
 }
@@ -82,6 +85,7 @@ fn bar(model: &ElastoPlastic, case: Case) -> Solver<2> {
     let mut settings = Settings::<2>::new(case.kinematics, h);
     settings.scheme = case.scheme;
     settings.shape_function = case.kernel;
+    settings.pic_fraction = case.pic_fraction;
     let mut s = Solver::new(settings);
     let points = fill(
         &Geometry::Box {
@@ -245,6 +249,16 @@ fn plane_strain_usf_derivatives_match_central_differences() {
 #[test]
 fn plane_strain_usl_derivatives_match_central_differences() {
     check(Case::new(Kinematics::PlaneStrain, Scheme::Usl), 100);
+}
+
+/// A fraction of PIC in the velocity update: v ← (1 − β)(v + a Δt) + β ṽ.
+#[test]
+fn pic_blend_derivatives_match_central_differences() {
+    let case = Case {
+        pic_fraction: 0.05,
+        ..Case::new(Kinematics::Axisymmetric, Scheme::Musl)
+    };
+    check(case, 300);
 }
 
 /// CPDI: the weights move with the domain's vertices and change with F.

@@ -11,7 +11,8 @@
 //! [time]                           # end [s], dt [s] (optional), safety, scheme = "musl" (default)|"usl"|"usf"
 //! [solver]                         # damping [1/s], mass_cutoff, body_force [m/s²], domain, blowup_factor,
 //!                                  # bulk_viscosity = [C1, C2] (default [0.06, 1.5]; [0, 0] for none),
-//!                                  # shape_function = "cpdi" (default) | "linear" | "ugimp" | "cpgimp" | ...
+//!                                  # shape_function = "cpdi" (default) | "linear" | "ugimp" | "cpgimp" | ...,
+//!                                  # pic_fraction = 0 (default, FLIP) .. 1 (PIC)
 //! [[materials]]                    # name, file = "../materials/x.toml", neo_hooke = {E, nu, rho},
 //!                                  # or parameters = { the contents of a parameter file }
 //! [[bodies]]                       # name, material, shape = {type = "box"|"disk"|"sphere"|"cylinder"|"polygon", ...},
@@ -284,6 +285,19 @@ mod tests {
         .unwrap();
         let e = load(&path).err().unwrap().to_string();
         assert!(e.contains("spaceing"), "{e}");
+        std::fs::write(
+            &path,
+            text.replace(
+                "shape_function = \"linear\"",
+                "shape_function = \"linear\"\npic_fraction = 1.5",
+            ),
+        )
+        .unwrap();
+        let e = load(&path).err().unwrap().to_string();
+        assert!(
+            e.contains("solver.pic_fraction") && e.contains("1.5"),
+            "{e}"
+        );
     }
 
     /// The shipped axisymmetric Taylor scene with its material path made absolute, to be

@@ -75,6 +75,15 @@ pub(super) fn settings<const D: usize>(
         settings.bulk_viscosity =
             (linear > 0.0 || quadratic > 0.0).then_some(BulkViscosity { linear, quadratic });
     }
+    if let Some(beta) = sv.pic_fraction {
+        if !(0.0..=1.0).contains(&beta) {
+            return Err(check.err(
+                "solver.pic_fraction",
+                format!("{beta} is not a fraction from 0 (FLIP) to 1 (PIC)"),
+            ));
+        }
+        settings.pic_fraction = beta;
+    }
     settings.shape_function = match &sv.shape_function {
         Some(name) => name
             .parse()

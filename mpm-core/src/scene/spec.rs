@@ -59,6 +59,8 @@ pub struct SolverSpec {
     pub domain: Option<BoxSpec>,
     pub blowup_factor: Option<f64>,
     pub bulk_viscosity: Option<[f64; 2]>,
+    /// Fraction of PIC in the points' velocity update, 0 to 1 (default 0).
+    pub pic_fraction: Option<f64>,
     /// A kernel of `shape::ShapeFunction::NAMES` (default "linear").
     pub shape_function: Option<String>,
 }

@@ -16,6 +16,7 @@ mod grid_fit;
 mod grid_solve;
 mod initialize;
 pub mod observer;
+mod pic_blend;
 mod scatter;
 mod scheme;
 mod settings;
@@ -291,9 +292,15 @@ impl<const D: usize> Solver<D> {
             Stage::MapMomentum => self.scatter(Transfer::MOMENTUM),
             Stage::SolveMomentum => self.solve_grid(NodalUpdate::Accelerate),
             Stage::NodalVelocity => self.solve_grid(NodalUpdate::VelocityOnly),
-            Stage::UpdateVelocity => self.gather(Gather::Velocity)?,
+            Stage::UpdateVelocity => {
+                self.gather(Gather::Velocity)?;
+                self.blend_with_grid_velocity();
+            }
             Stage::UpdateStress => self.gather(Gather::Stress)?,
-            Stage::UpdateVelocityAndStress => self.gather(Gather::VelocityAndStress)?,
+            Stage::UpdateVelocityAndStress => {
+                self.gather(Gather::VelocityAndStress)?;
+                self.blend_with_grid_velocity();
+            }
             Stage::Advect => self.advect()?,
             Stage::AdvanceTime => {
                 self.time += self.dt;

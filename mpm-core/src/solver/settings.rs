@@ -48,6 +48,9 @@ pub struct Settings<const D: usize> {
     /// Artificial bulk viscosity added to the stress (module `viscosity`); `None` for
     /// none.
     pub bulk_viscosity: Option<BulkViscosity>,
+    /// Fraction β of the grid velocity in the points' velocity update, 0 (FLIP, the
+    /// thesis's algorithm 11) to 1 (PIC): module `pic_blend`.
+    pub pic_fraction: f64,
 }
 
 impl<const D: usize> Settings<D> {
@@ -74,6 +77,7 @@ impl<const D: usize> Settings<D> {
             mass_cutoff: 1e-3,
             energy_error_fraction: 0.25,
             bulk_viscosity: Some(BulkViscosity::STANDARD),
+            pic_fraction: 0.0,
         }
     }
 

@@ -31,7 +31,8 @@
 //! rigid bodies of prescribed motion and with faces on elastic bars, whose displacement
 //! follows the contact force (module `contact`), point conditions whose force on a
 //! point depends on its position alone (springs: df = (∂f/∂x) dx, with ∂f/∂x from
-//! `PointCondition::position_jacobian`). Held fixed, and so refused as
+//! `PointCondition::position_jacobian`), a fraction of PIC in the velocity update
+//! (module `pic_blend`). Held fixed, and so refused as
 //! free parameters: anything that changes ρ0 (the masses) or the wave speed (Δt). Not
 //! carried yet, and refused with the reason: the GIMP kernels and hexahedral CPDI, and
 //! other point conditions.
@@ -456,6 +457,10 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                     let (v_grid, a, l) = interpolate(nodes, stencils.of(i));
                     if motion {
                         *v = join_all(&s.particles.velocity[i], v) + a * dt;
+                        let beta = s.settings.pic_fraction;
+                        if beta > 0.0 {
+                            *v = *v * c::<Dual<P>>(1.0 - beta) + v_grid * c::<Dual<P>>(beta);
+                        }
                         *vg = v_grid;
                     }
                     if !deformation {
