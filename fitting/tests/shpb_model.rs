@@ -192,7 +192,7 @@ fn a_set_file_with_a_bad_drive_names_it() {
             "`experiment.jacobian`: \"analytic\", expected \"finite-difference\" or \"exact\"",
         ),
         (
-            "level = \"mpm-axisymmetric\"\njacobian = \"exact\"\nshape_function = \"ugimp\"",
+            "level = \"mpm-axisymmetric\"\njacobian = \"exact\"\nshape_function = \"cpdi-hex\"",
             "needs shape_function",
         ),
     ] {

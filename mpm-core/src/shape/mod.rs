@@ -188,7 +188,7 @@ impl std::str::FromStr for ShapeFunction {
 /// The nodes of a box of `dims[k]` nodes along axis k as per-axis indices, x fastest
 /// (counted up digit by digit: no division per node).
 #[inline]
-fn box_indices<const D: usize>(dims: [usize; D]) -> impl Iterator<Item = [usize; D]> {
+pub(crate) fn box_indices<const D: usize>(dims: [usize; D]) -> impl Iterator<Item = [usize; D]> {
     let count: usize = dims.iter().product();
     let mut next = [0usize; D];
     (0..count).map(move |_| {

@@ -442,7 +442,7 @@ fn mpm_block_model(
             return Err(field(
                 "jacobian",
                 format!(
-                    "\"exact\" needs shape_function \"cpdi\", \"cpgimp\" or \"linear\", not \"{}\"",
+                    "\"exact\" needs shape_function \"cpdi\", \"cpgimp\", \"ugimp\" or \"linear\", not \"{}\"",
                     settings.shape_function.name()
                 ),
             ));

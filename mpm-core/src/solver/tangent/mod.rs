@@ -32,9 +32,9 @@
 //! follows the contact force (module `contact`), point conditions whose force on a
 //! point depends on its position alone (springs: df = (∂f/∂x) dx, with ∂f/∂x from
 //! `PointCondition::position_jacobian`), a fraction of PIC in the velocity update
-//! (module `pic_blend`). Held fixed, and so refused as
+//! (module `pic_blend`), and uGIMP weights. Held fixed, and so refused as
 //! free parameters: anything that changes ρ0 (the masses) or the wave speed (Δt). Not
-//! carried yet, and refused with the reason: the GIMP kernels and hexahedral CPDI, and
+//! carried yet, and refused with the reason: analytic cpGIMP and hexahedral CPDI, and
 //! other point conditions.
 
 mod contact;
@@ -48,7 +48,7 @@ use super::{Solver, Stage};
 use crate::failure::{Cause, SimulationError};
 use crate::grid::Node;
 use crate::parallel;
-use crate::shape::ShapeFunction;
+use crate::shape::{Reach, ShapeFunction};
 use contact::{DualLoad, FaceDerivatives};
 use materials::scalar::c;
 use materials::seeded::{Dual, SeededModel};
@@ -157,6 +157,18 @@ fn finite_derivatives<const P: usize>(sigma: &Matrix3<Dual<P>>, state: &State<Du
     probe.eps.iter().all(|d| d.is_finite())
 }
 
+/// Nodes of the widest box a uGIMP point's domain meets (0 without uGIMP blocks).
+fn widest_gimp_box<const D: usize>(solver: &Solver<D>, kernels: &[SmoothKernel]) -> usize {
+    let p = &solver.particles;
+    let inv_h = solver.grid.inv_spacing;
+    (solver.blocks.iter().zip(kernels))
+        .filter(|(_, k)| **k == SmoothKernel::UGimp)
+        .flat_map(|(block, _)| block.range.clone())
+        .map(|i| Reach::box_nodes(&p.half_size[i].component_mul(&inv_h)))
+        .max()
+        .unwrap_or(0)
+}
+
 /// Whether the pass carries shape functions `kernel`.
 pub fn carries(kernel: ShapeFunction) -> bool {
     SmoothKernel::of(kernel).is_some()
@@ -188,7 +200,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             let kernel = solver.kernel_of(b);
             let Some(smooth) = SmoothKernel::of(kernel) else {
                 return refuse(format!(
-                    "body `{}` runs {} shape functions; the pass carries linear, cpdi and cpgimp",
+                    "body `{}` runs {} shape functions; the pass carries linear, cpdi, cpgimp and ugimp",
                     block.name,
                     kernel.name()
                 ));
@@ -230,7 +242,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             state,
             before_update: (Vec::with_capacity(n), Vec::with_capacity(n)),
             nodes: Vec::new(),
-            stencils: DualStencils::new(n, &kernels),
+            stencils: DualStencils::new(n, &kernels, widest_gimp_box(solver, &kernels)),
             slabs: Slabs::default(),
             kernels,
             attachment: vec![vec![None; n]; solver.rigid.len()],

@@ -8,6 +8,10 @@
 //!   with the vertices x^j = x + R ξ^j, so the derivatives carry both the vertices' motion
 //!   and the domain's deformation.
 //!
+//! - uGIMP (module `shape::gimp`): N = Π_k S̄_k with S̄(r) = [Φ(r + l) − Φ(r − l)]/(2l)
+//!   over the box of nodes the reference domain meets, its half-widths l fixed, so the
+//!   derivatives carry the point's motion through r.
+//!
 //! Which cell holds the point or a vertex follows the real parts, as in the run. A node
 //! may appear more than once in a point's list (one entry per vertex that reaches it):
 //! every transfer adds the entries, so the sums are the run's.
@@ -15,7 +19,7 @@
 use super::Dual;
 use crate::grid::{floor_i64, Grid};
 use crate::shape::domain::{Deformed, Follow, Stretched};
-use crate::shape::{corners, linear, ShapeFunction};
+use crate::shape::{box_indices, corners, linear, Reach, ShapeFunction};
 use materials::scalar::c;
 use nalgebra::{Matrix3, SMatrix, SVector};
 
@@ -25,6 +29,7 @@ pub(super) enum SmoothKernel {
     Linear,
     Cpdi,
     CpGimp,
+    UGimp,
 }
 
 impl SmoothKernel {
@@ -34,16 +39,18 @@ impl SmoothKernel {
             ShapeFunction::Linear => Some(SmoothKernel::Linear),
             ShapeFunction::Cpdi => Some(SmoothKernel::Cpdi),
             ShapeFunction::CpGimp => Some(SmoothKernel::CpGimp),
-            ShapeFunction::UGimp | ShapeFunction::CpGimpAnalytic | ShapeFunction::CpdiHex => None,
+            ShapeFunction::UGimp => Some(SmoothKernel::UGimp),
+            ShapeFunction::CpGimpAnalytic | ShapeFunction::CpdiHex => None,
         }
     }
 
     /// Entries a point's list holds at most: 2ᴰ corners of one cell or of each of the 2ᴰ
-    /// vertices' cells.
-    pub(super) fn room(self, d: usize) -> usize {
+    /// vertices' cells, or the `box_nodes` of the widest uGIMP box.
+    pub(super) fn room(self, d: usize, box_nodes: usize) -> usize {
         match self {
             SmoothKernel::Linear => corners(d),
             SmoothKernel::Cpdi | SmoothKernel::CpGimp => corners(d) * corners(d),
+            SmoothKernel::UGimp => box_nodes.max(corners(d)),
         }
     }
 }
@@ -62,11 +69,12 @@ pub(super) type Entries<'a, const D: usize, const P: usize> =
     (&'a [u32], &'a [Dual<P>], &'a [SVector<Dual<P>, D>]);
 
 impl<const D: usize, const P: usize> DualStencils<D, P> {
-    /// Room for `count` points with kernels `kernels` (the largest room of them).
-    pub(super) fn new(count: usize, kernels: &[SmoothKernel]) -> Self {
+    /// Room for `count` points with kernels `kernels` (the largest room of them), the
+    /// widest uGIMP box meeting `box_nodes` nodes.
+    pub(super) fn new(count: usize, kernels: &[SmoothKernel], box_nodes: usize) -> Self {
         let room = kernels
             .iter()
-            .map(|k| k.room(D))
+            .map(|k| k.room(D, box_nodes))
             .max()
             .unwrap_or(corners(D));
         DualStencils {
@@ -131,6 +139,16 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
             SmoothKernel::Linear => None,
             SmoothKernel::Cpdi => edges_and_inverse::<Deformed, D, P>(half, f),
             SmoothKernel::CpGimp => edges_and_inverse::<Stretched, D, P>(half, f),
+            SmoothKernel::UGimp if half.min() > 0.0 => {
+                let l = half.component_mul(&grid.inv_spacing);
+                for (node, n, grad) in gimp_box(&xi, &l, &grid.inv_spacing) {
+                    let offset: i64 = (0..D).map(|k| node[k] * grid.strides[k] as i64).sum();
+                    push(corner as i64 + offset, n, grad);
+                }
+                self.len[i] = len as u8;
+                return;
+            }
+            SmoothKernel::UGimp => None,
         };
         match domain {
             None => {
@@ -208,4 +226,62 @@ fn corner_weights<const D: usize, const P: usize>(xi: &SVector<Dual<P>, D>) -> [
         }
     }
     weight
+}
+
+/// The uGIMP weights of the box of nodes a domain of half-widths `l` [cells] meets, for a
+/// point at local coordinates `xi` with their derivatives (module `shape::gimp`, the same
+/// expressions): each node's cell offsets from the point's cell, N and ∇N.
+fn gimp_box<const D: usize, const P: usize>(
+    xi: &SVector<Dual<P>, D>,
+    l: &SVector<f64, D>,
+    inv_h: &SVector<f64, D>,
+) -> impl Iterator<Item = ([i64; D], Dual<P>, SVector<Dual<P>, D>)> {
+    let support: [usize; D] = std::array::from_fn(|k| Reach::of(l[k]).support);
+    let first: [i64; D] = std::array::from_fn(|k| floor_i64(xi[k].re - l[k]));
+    let (xi, l, inv_h) = (*xi, *l, *inv_h);
+    box_indices(support).map(move |index| {
+        let node: [i64; D] = std::array::from_fn(|k| first[k] + index[k] as i64);
+        let factors: [(Dual<P>, Dual<P>); D] =
+            std::array::from_fn(|k| averaged_hat(xi[k] - node[k] as f64, l[k]));
+        let n = factors.iter().fold(Dual::from_re(1.0), |n, f| n * f.0);
+        let grad = SVector::<Dual<P>, D>::from_fn(|j, _| {
+            let others = (0..D)
+                .filter(|&k| k != j)
+                .fold(Dual::from_re(1.0), |n, k| n * factors[k].0);
+            factors[j].1 * inv_h[j] * others
+        });
+        (node, n, grad)
+    })
+}
+
+/// S̄(r) = [Φ(r + l) − Φ(r − l)]/(2l) and dS̄/dξ = [S(r + l) − S(r − l)]/(2l) for a node
+/// r cells from the point.
+fn averaged_hat<const P: usize>(r: Dual<P>, l: f64) -> (Dual<P>, Dual<P>) {
+    let w = 0.5 / l;
+    (
+        (hat_integral(r + l) - hat_integral(r - l)) * w,
+        (hat(r + l) - hat(r - l)) * w,
+    )
+}
+
+/// The antiderivative Φ of the hat function (cells).
+fn hat_integral<const P: usize>(s: Dual<P>) -> Dual<P> {
+    let one = Dual::from_re(1.0);
+    if s.re <= -1.0 {
+        Dual::from_re(0.0)
+    } else if s.re <= 0.0 {
+        (one + s) * 0.5 * (one + s)
+    } else if s.re < 1.0 {
+        one - (one - s) * 0.5 * (one - s)
+    } else {
+        one
+    }
+}
+
+/// The hat function S(s) = max(1 − |s|, 0).
+fn hat<const P: usize>(s: Dual<P>) -> Dual<P> {
+    match s.re.abs() < 1.0 {
+        true => Dual::from_re(1.0) - if s.re < 0.0 { -s } else { s },
+        false => Dual::from_re(0.0),
+    }
 }
