@@ -37,7 +37,7 @@ pub struct Args {
     /// contact-force sensitivities p ∂f/∂p and the control points' p ∂x/∂p to
     /// derivatives.csv, the points' charted in derivatives.png. SHPB scenes (either
     /// drive): the face forces' sensitivities, scaled by the standard errors of the
-    /// --params report (else by the values). Needs linear, CPDI or cpGIMP shape
+    /// --params report (else by the values). Needs linear, CPDI, cpGIMP or uGIMP shape
     /// functions; rigid bodies of prescribed motion, faces on elastic bars and springs
     /// are carried.
     #[arg(long, value_delimiter = ',')]

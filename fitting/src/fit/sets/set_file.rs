@@ -37,7 +37,7 @@
 //!                             #   bars, only ε_i drives, the model predicts ε_r and ε_t
 //! jacobian = "exact"          # MPM levels: "finite-difference" (default, one run per free
 //!                             #   parameter) or "exact": the derivatives carried through one
-//!                             #   run (measured-velocity drive; linear, cpdi or cpgimp)
+//!                             #   run (either drive; linear, cpdi, cpgimp or ugimp)
 //! thermal = "isothermal"      # tensile: "isothermal" | "adiabatic" (default: adiabatic above 1 1/s)
 //! window = [15e-6, 115e-6]    # shpb (required): window [s] after the incident pulse start at the
 //!                             #   faces, or "plateau": the strain-rate plateau of `shpb::analyze`
