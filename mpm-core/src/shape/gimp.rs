@@ -19,6 +19,7 @@
 use super::domain::{Fixed, Follow, Stretched};
 use super::{box_indices, Kernel, Point, Reach, Weights, MAX_SUPPORT};
 use crate::grid::floor_i64;
+use materials::scalar::{c, Scalar};
 use nalgebra::SVector;
 use std::marker::PhantomData;
 
@@ -61,23 +62,41 @@ impl<M: Follow, const D: usize> Kernel<D> for Gimp<M> {
     }
 }
 
+/// S̄(r) = [Φ(r + l) − Φ(r − l)]/(2l) and dS̄/dξ = [S(r + l) − S(r − l)]/(2l) for a node
+/// r cells from a point with half-width l > 0 (cells). Written for any scalar: the
+/// derivative pass (`solver::tangent`) runs it with dual r.
+#[inline]
+pub(crate) fn averaged_hat<T: Scalar>(r: T, l: f64) -> (T, T) {
+    let w = 0.5 / l;
+    (
+        (hat_integral(r + l) - hat_integral(r - l)) * w,
+        (hat(r + l) - hat(r - l)) * w,
+    )
+}
+
 /// Antiderivative Φ of the hat function (cells).
 #[inline]
-fn hat_integral(s: f64) -> f64 {
-    if s <= -1.0 {
-        0.0
-    } else if s <= 0.0 {
-        0.5 * (1.0 + s) * (1.0 + s)
-    } else if s < 1.0 {
-        1.0 - 0.5 * (1.0 - s) * (1.0 - s)
+fn hat_integral<T: Scalar>(s: T) -> T {
+    let one = T::one();
+    if s.re() <= -1.0 {
+        T::zero()
+    } else if s.re() <= 0.0 {
+        c::<T>(0.5) * (one + s) * (one + s)
+    } else if s.re() < 1.0 {
+        one - c::<T>(0.5) * (one - s) * (one - s)
     } else {
-        1.0
+        one
     }
 }
 
+/// The hat function S(s) = max(1 − |s|, 0).
 #[inline]
-fn hat(s: f64) -> f64 {
-    (1.0 - s.abs()).max(0.0)
+fn hat<T: Scalar>(s: T) -> T {
+    if s.re().abs() < 1.0 {
+        T::one() - s.abs()
+    } else {
+        T::zero()
+    }
 }
 
 /// 1-D factors S̄ and dS̄/dξ [per cell] of the `support` nodes from ⌊ξ − l⌋ (the
@@ -93,11 +112,7 @@ fn axis(xi: f64, l: f64, support: usize) -> (i64, [f64; MAX_SUPPORT], [f64; MAX_
             let inside = r.abs() < 1.0;
             (hat(r), if inside { -r.signum() } else { 0.0 })
         } else {
-            let w = 0.5 / l;
-            (
-                (hat_integral(r + l) - hat_integral(r - l)) * w,
-                (hat(r + l) - hat(r - l)) * w,
-            )
+            averaged_hat(r, l)
         };
     }
     (first, s, ds)

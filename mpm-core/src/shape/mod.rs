@@ -18,7 +18,7 @@
 
 mod cpdi;
 pub mod domain;
-mod gimp;
+pub(crate) mod gimp;
 mod hex;
 mod linear;
 

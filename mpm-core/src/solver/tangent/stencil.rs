@@ -19,6 +19,7 @@
 use super::Dual;
 use crate::grid::{floor_i64, Grid};
 use crate::shape::domain::{Deformed, Follow, Stretched};
+use crate::shape::gimp::averaged_hat;
 use crate::shape::{box_indices, corners, linear, Reach, ShapeFunction};
 use materials::scalar::c;
 use nalgebra::{Matrix3, SMatrix, SVector};
@@ -252,36 +253,4 @@ fn gimp_box<const D: usize, const P: usize>(
         });
         (node, n, grad)
     })
-}
-
-/// S̄(r) = [Φ(r + l) − Φ(r − l)]/(2l) and dS̄/dξ = [S(r + l) − S(r − l)]/(2l) for a node
-/// r cells from the point.
-fn averaged_hat<const P: usize>(r: Dual<P>, l: f64) -> (Dual<P>, Dual<P>) {
-    let w = 0.5 / l;
-    (
-        (hat_integral(r + l) - hat_integral(r - l)) * w,
-        (hat(r + l) - hat(r - l)) * w,
-    )
-}
-
-/// The antiderivative Φ of the hat function (cells).
-fn hat_integral<const P: usize>(s: Dual<P>) -> Dual<P> {
-    let one = Dual::from_re(1.0);
-    if s.re <= -1.0 {
-        Dual::from_re(0.0)
-    } else if s.re <= 0.0 {
-        (one + s) * 0.5 * (one + s)
-    } else if s.re < 1.0 {
-        one - (one - s) * 0.5 * (one - s)
-    } else {
-        one
-    }
-}
-
-/// The hat function S(s) = max(1 − |s|, 0).
-fn hat<const P: usize>(s: Dual<P>) -> Dual<P> {
-    match s.re.abs() < 1.0 {
-        true => Dual::from_re(1.0) - if s.re < 0.0 { -s } else { s },
-        false => Dual::from_re(0.0),
-    }
 }
