@@ -8,15 +8,11 @@ use crate::scalar::c;
 use crate::tensor::M3;
 use nalgebra::SMatrix;
 
-/// `v` as a dual number with unit derivative in direction `i`.
-pub fn seed<const N: usize>(v: f64, i: usize) -> Dual<N> {
-    Dual::seeded(v, i)
-}
-
-/// Parameter `name` of value `v`: seeded in direction k if it is `free[k]`, else constant.
-pub fn seed_named<const N: usize>(free: &[&str; N], name: &str, v: f64) -> Dual<N> {
+/// Parameter `name` of value `v`: seeded in direction k if it is `free[k]` (k < N), else
+/// constant.
+pub fn seed_named<const N: usize>(free: &[&str], name: &str, v: f64) -> Dual<N> {
     match free.iter().position(|n| *n == name) {
-        Some(k) => seed(v, k),
+        Some(k) => Dual::seeded(v, k),
         None => c(v),
     }
 }
@@ -34,7 +30,7 @@ pub fn tangent<M: Model<f64>>(
 ) -> Result<(M3<f64>, Tangent, State<f64>), MaterialError> {
     type D9 = Dual<9>;
     let m = model.map_params(|_, v| c::<D9>(v));
-    let fd = M3::from_fn(|i, j| seed::<9>(f[(i, j)], 3 * i + j));
+    let fd = M3::from_fn(|i, j| D9::seeded(f[(i, j)], 3 * i + j));
     let old_d = old.map(c::<D9>);
     let (sigma, new) = m.update(&fd, dt, &old_d)?;
     let mut d = Tangent::zeros();
@@ -54,7 +50,7 @@ pub fn sensitivities<M: Model<f64>, const P: usize>(
     dt: f64,
     old: &State<f64>,
 ) -> Result<(M3<f64>, [M3<f64>; P]), MaterialError> {
-    let m = model.map_params(|name, v| seed_named(names, name, v));
+    let m = model.map_params(|name, v| seed_named::<P>(names, name, v));
     let (sigma, _) = m.update(&f.map(c), dt, &old.map(c))?;
     let mut out = [M3::zeros(); P];
     for (k, ds) in out.iter_mut().enumerate() {

@@ -85,7 +85,7 @@ where
     M: Model<f64>,
     M::With<Dual<P>>: 'static,
 {
-    Box::new(model.map_params(|name, v| seed_named(free, name, v)))
+    Box::new(model.map_params(|name, v| seed_named::<P>(free, name, v)))
 }
 
 /// Most directions a derivative pass carries (`for_directions`).

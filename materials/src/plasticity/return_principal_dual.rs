@@ -249,7 +249,7 @@ mod tests {
         f: &M3<f64>,
         old: &State<f64>,
     ) -> (ElastoPlastic<D9>, M3<D9>, State<D9>) {
-        let model = steel(return_map).map_params(|name, v| seed_named(&PARAMETERS, name, v));
+        let model = steel(return_map).map_params(|name, v| seed_named::<9>(&PARAMETERS, name, v));
         let mut f_d = f.map(D9::from);
         f_d[(0, 0)] = D9::seeded(f[(0, 0)], 5);
         f_d[(0, 1)] = D9::seeded(f[(0, 1)], 6);

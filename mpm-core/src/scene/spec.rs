@@ -61,7 +61,7 @@ pub struct SolverSpec {
     pub bulk_viscosity: Option<[f64; 2]>,
     /// Fraction of PIC in the points' velocity update, 0 to 1 (default 0).
     pub pic_fraction: Option<f64>,
-    /// A kernel of `shape::ShapeFunction::NAMES` (default "linear").
+    /// A kernel of `shape::ShapeFunction::NAMES` (default "cpdi", `SCENE_DEFAULT`).
     pub shape_function: Option<String>,
 }
 

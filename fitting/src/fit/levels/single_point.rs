@@ -10,11 +10,11 @@
 
 use crate::fit::levels::model::{ExperimentModel, Material};
 use anyhow::{anyhow, bail, Context, Result};
-use materials::ad::seed;
+use materials::ad::seed_named;
 use materials::driver::{run, LoadPath, Record};
 use materials::material::Model;
 use materials::preheated::{Preheated, STRETCH_PARAMETERS};
-use materials::scalar::{c, Scalar};
+use materials::scalar::Scalar;
 use nalgebra::DMatrix;
 use num_dual::Dual64;
 
@@ -83,10 +83,7 @@ impl<O: Observable> SinglePoint<O> {
         material: &Material,
         free: &[&str],
     ) -> Result<(Vec<f64>, DMatrix<f64>)> {
-        let seeded = material.map_params(|name, v| match free.iter().position(|n| *n == name) {
-            Some(k) => seed::<P>(v, k),
-            None => c(v),
-        });
+        let seeded = material.map_params(|name, v| seed_named::<P>(free, name, v));
         let out = self.evaluate(&seeded)?;
         let jac = DMatrix::from_fn(out.len(), P, |i, k| out[i].eps[k]);
         Ok((out.iter().map(|x| x.re).collect(), jac))
