@@ -2,10 +2,11 @@
 //! for a lane type `L`: `f64` for one point, `F64x4` for four (simba's `WideF64x4`, SIMD
 //! arithmetic over `wide::f64x4`: one AVX instruction per operation in the workspace's
 //! x86-64-v3 build, `.cargo/config.toml`; two SSE2 ones on the x86-64 baseline). Branches
-//! become lane masks (`select`), and the library functions (exp, ln, pow) are taken lane
-//! by lane from the same `f64` routines, so each lane of a batch gives the one-point
-//! result to the bit, whatever it is grouped with.
+//! become lane masks (`select`), and exp, ln and pow are one vectorized routine for one
+//! point and for four (`elementary`), so each lane of a batch gives the one-point result
+//! to the bit, whatever it is grouped with.
 
+use crate::elementary::Elementary;
 use crate::error::MaterialError;
 use nalgebra::SMatrix;
 use simba::simd::{SimdBool, SimdRealField, SimdValue};
@@ -17,7 +18,7 @@ pub type F64x4 = simba::simd::WideF64x4;
 pub const MAX_LANES: usize = 4;
 
 /// A lane type: `f64` or `F64x4`.
-pub trait Lane: SimdRealField<Element = f64> + Copy + Send + Sync {
+pub trait Lane: SimdRealField<Element = f64> + Elementary + Copy + Send + Sync {
     /// A slot per lane for what failed in it.
     type Failures: Default + AsRef<[Option<MaterialError>]> + AsMut<[Option<MaterialError>]>;
 }

@@ -12,6 +12,7 @@ pub mod conformance;
 pub mod driver;
 pub mod dual;
 pub mod elastic;
+pub mod elementary;
 pub mod error;
 pub mod expm;
 pub mod flow_stress;

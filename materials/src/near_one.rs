@@ -8,7 +8,7 @@
 //!   k = 5, for |x − 1| ≤ 1/16: |t| ≤ 1/31, and the first omitted term t¹²/13 ≤ 9e-20
 //!   relative.
 //!
-//! `f64::exp` and `f64::ln` elsewhere. Each is a third of the instructions of the library
+//! `elementary`'s exp and ln elsewhere. Each is a third of the instructions of the library
 //! call.
 
 use crate::lanes::{select, Lane};
@@ -34,7 +34,7 @@ const INV_FACTORIAL: [f64; 8] = [
 pub fn exp_small<L: Lane>(z: L) -> L {
     let far = z.simd_abs().simd_gt(L::splat(LIMIT));
     if far.all() {
-        return z.simd_exp();
+        return z.exp_v();
     }
     let tail = INV_FACTORIAL
         .iter()
@@ -42,7 +42,7 @@ pub fn exp_small<L: Lane>(z: L) -> L {
         .fold(L::splat(0.0), |acc, &c| (acc + L::splat(c)) * z);
     let near = L::splat(1.0) + tail;
     if far.any() {
-        select(far, z.simd_exp(), near)
+        select(far, z.exp_v(), near)
     } else {
         near
     }
@@ -57,7 +57,7 @@ pub fn ln_near_one<L: Lane>(x: L) -> L {
     let one = L::splat(1.0);
     let far = (x - one).simd_abs().simd_gt(L::splat(LIMIT));
     if far.all() {
-        return x.simd_ln();
+        return x.ln_v();
     }
     let t = (x - one) / (x + one);
     let t2 = t * t;
@@ -67,7 +67,7 @@ pub fn ln_near_one<L: Lane>(x: L) -> L {
         .fold(L::splat(0.0), |acc, &c| (acc + L::splat(c)) * t2);
     let near = L::splat(2.0) * t * (one + tail);
     if far.any() {
-        select(far, x.simd_ln(), near)
+        select(far, x.ln_v(), near)
     } else {
         near
     }

@@ -180,26 +180,44 @@ impl Onset {
 }
 
 impl FlowStress<f64> {
-    /// τ_y(α_n, 0, θ_n) at `alpha_n` and `theta` [K] (reference temperature `theta0`).
-    pub fn onset(&self, alpha_n: f64, theta: f64, theta0: f64) -> Onset {
-        let thermal = self.thermal_factor(theta, theta0);
-        let (tau_y0, alpha_n_pow) = match self {
+    /// τ_y(α_n, 0, θ_n) at `alpha_n` and `theta` [K] (reference temperature `theta0`), of
+    /// one point or a point per lane. Every point takes it at every step: JC's two powers
+    /// are the vectorized x^y (`elementary`), so four points cost about one library
+    /// `powf` each and a lane gives the one-point result to the bit.
+    pub fn onset<L: Lane>(&self, alpha_n: L, theta: L, theta0: f64) -> Onset<L> {
+        let p = match self {
+            FlowStress::JohnsonCook(p) => p,
             FlowStress::Voce(_) | FlowStress::Composed(_) => {
-                (self.tau_y_athermal(alpha_n, 0.0) * thermal, 0.0)
-            }
-            FlowStress::JohnsonCook(p) => {
-                let power = if alpha_n > 0.0 {
-                    alpha_n.powf(p.n)
-                } else {
-                    0.0
-                };
-                ((p.a + p.b * power) * thermal, power)
+                return Onset::pack(|i| {
+                    self.onset_athermal_law(alpha_n.extract(i), theta.extract(i), theta0)
+                });
             }
         };
+        let (zero, one) = (L::splat(0.0), L::splat(1.0));
+        let theta_star = (theta - L::splat(theta0)) / L::splat(p.theta_m - theta0);
+        // 1 − θ*^M with θ* clamped to [0, 1], as `softening::johnson_cook`.
+        let warm = one - theta_star.simd_clamp(zero, one).powf_v(L::splat(p.m));
+        let thermal = select(
+            theta_star.simd_le(zero),
+            one,
+            select(theta_star.simd_ge(one), zero, warm),
+        );
+        let power = select(alpha_n.simd_gt(zero), alpha_n.powf_v(L::splat(p.n)), zero);
         Onset {
-            tau_y0,
+            tau_y0: (L::splat(p.a) + L::splat(p.b) * power) * thermal,
             alpha_n,
-            alpha_n_pow,
+            alpha_n_pow: power,
+            thermal,
+        }
+    }
+
+    /// The onset of a Voce or composed law, whose hardening is not a power of α.
+    fn onset_athermal_law(&self, alpha_n: f64, theta: f64, theta0: f64) -> Onset {
+        let thermal = self.thermal_factor(theta, theta0);
+        Onset {
+            tau_y0: self.tau_y_athermal(alpha_n, 0.0) * thermal,
+            alpha_n,
+            alpha_n_pow: 0.0,
             thermal,
         }
     }
@@ -213,6 +231,16 @@ impl<L: Lane> Onset<L> {
             alpha_n: pack(|i| point(i).alpha_n),
             alpha_n_pow: pack(|i| point(i).alpha_n_pow),
             thermal: pack(|i| point(i).thermal),
+        }
+    }
+
+    /// The onset of the point in lane `i`.
+    pub fn lane(&self, i: usize) -> Onset {
+        Onset {
+            tau_y0: self.tau_y0.extract(i),
+            alpha_n: self.alpha_n.extract(i),
+            alpha_n_pow: self.alpha_n_pow.extract(i),
+            thermal: self.thermal.extract(i),
         }
     }
 }
@@ -315,7 +343,7 @@ impl<L: Lane> SeriesPower<L> {
                 .fold(L::splat(0.0), |acc, &c| (acc + L::splat(c)) * x);
             self.alpha_n_pow * (L::splat(1.0) + tail)
         };
-        let power = || (self.alpha_n + dalpha).simd_powf(L::splat(n));
+        let power = || (self.alpha_n + dalpha).powf_v(L::splat(n));
         if converged.all() {
             series()
         } else if converged.none() {
@@ -345,11 +373,11 @@ impl<'a, L: Lane> LogIncrementPath<'a, L> {
 
     /// Δα, τ_y and dτ_y/du at u = ln Δα.
     pub fn at(&self, u: L) -> AtIncrement<L> {
-        let dalpha = u.simd_exp();
+        let dalpha = u.exp_v();
         let alpha = self.alpha_n + dalpha;
         let (tau_y, dtau_y_du) = match self.flow {
             FlowStress::Voce(p) => {
-                let decay = L::splat(p.tau0 - p.tau_inf) * (L::splat(-p.eta) * alpha).simd_exp();
+                let decay = L::splat(p.tau0 - p.tau_inf) * (L::splat(-p.eta) * alpha).exp_v();
                 (
                     L::splat(p.tau_inf) + decay + L::splat(p.h) * alpha,
                     dalpha * (L::splat(p.h) - L::splat(p.eta) * decay),
@@ -408,6 +436,7 @@ impl<'a, L: Lane> LogIncrementPath<'a, L> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::elementary::Elementary;
     use num_dual::Dual64;
 
     #[test]
@@ -439,7 +468,7 @@ mod tests {
             for dalpha in [1e-10, 3e-9, 2e-8, 1e-4, 0.05] {
                 let u = f64::ln(dalpha);
                 let at = along.at(u);
-                assert_eq!(at.dalpha, u.exp());
+                assert_eq!(at.dalpha, u.exp_v());
                 let (tau, dtau_du) = (at.tau_y, at.dtau_y_du);
                 let d = Dual64::new(dalpha, dalpha); // d/du of e^u
                 let expected = dual.tau_y(

@@ -26,7 +26,7 @@ pub mod return_reference;
 use crate::elastic::Elastic;
 use crate::error::MaterialError;
 use crate::flow_stress::{FlowStress, Onset};
-use crate::lanes::MAX_LANES;
+use crate::lanes::{pack, F64x4, MAX_LANES};
 use crate::material::{one_by_one, Deliver, Model, State};
 use crate::parameter_set;
 use crate::scalar::{c, Scalar};
@@ -206,16 +206,30 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
         }
         let model = self.re();
         let mut group = YieldingGroup::default();
-        for (i, (f_i, old_i)) in f.iter().zip(old).enumerate() {
-            match self.trial(f_i, old_i) {
-                Trial::Done(result) => deliver(i, result),
-                Trial::Yields { onset, .. } if onset.is_molten() => {
-                    deliver(i, self.update(f_i, dt, old_i))
-                }
-                Trial::Yields { onset, .. } => {
-                    group.push(i, re(f_i), old_i.re(), onset);
-                    if group.len == MAX_LANES {
-                        self.return_group(&model, &mut group, f, dt, old, deliver);
+        // Four points at a time: their onsets of flow in lanes, then their trial states.
+        for (first, (f_c, old_c)) in f.chunks(MAX_LANES).zip(old.chunks(MAX_LANES)).enumerate() {
+            let last = f_c.len() - 1;
+            let onsets = model.flow.onset::<F64x4>(
+                pack(|k| old_c[k.min(last)].alpha.re()),
+                pack(|k| old_c[k.min(last)].theta.re()),
+                model.thermal.theta0,
+            );
+            for (k, (f_i, old_i)) in f_c.iter().zip(old_c).enumerate() {
+                let i = first * MAX_LANES + k;
+                let trial = match self.trial_stress(f_i, old_i) {
+                    Ok(stress) => self.decide(stress, old_i, onsets.lane(k)),
+                    Err(e) => Trial::Done(Err(e)),
+                };
+                match trial {
+                    Trial::Done(result) => deliver(i, result),
+                    Trial::Yields { onset, .. } if onset.is_molten() => {
+                        deliver(i, self.update(f_i, dt, old_i))
+                    }
+                    Trial::Yields { onset, .. } => {
+                        group.push(i, re(f_i), old_i.re(), onset);
+                        if group.len == MAX_LANES {
+                            self.return_group(&model, &mut group, f, dt, old, deliver);
+                        }
                     }
                 }
             }
@@ -232,6 +246,18 @@ enum Trial<D> {
     Done(Result<(M3<D>, State<D>), MaterialError>),
     /// Yields: its onset of flow and φ^tr = τ_VM^tr − τ_y0 > 0 [Pa].
     Yields { onset: Onset, phi_trial: f64 },
+}
+
+/// The elastic trial state of a point.
+struct TrialStress<D> {
+    /// J = det F
+    j: D,
+    /// Fe^tr = F Fp_n⁻¹
+    fe: M3<D>,
+    /// τ^tr, in real arithmetic only (dual scalars compute it where it is the result).
+    tau: Option<M3<D>>,
+    /// τ_VM^tr [Pa]
+    tau_vm: f64,
 }
 
 /// A return in real arithmetic: Fp⁻¹, α, and τ where the return gives it.
@@ -285,29 +311,49 @@ impl<D: Scalar> ElastoPlastic<D> {
     /// The elastic trial state: its result if it does not yield.
     #[inline(always)]
     fn trial(&self, f: &M3<D>, old: &State<D>) -> Trial<D> {
+        match self.trial_stress(f, old) {
+            Ok(stress) => {
+                let old_re = old.re();
+                let flow = self.flow.map(|_, v| v.re());
+                let onset = flow.onset(old_re.alpha, old_re.theta, self.thermal.theta0.re());
+                self.decide(stress, old, onset)
+            }
+            Err(e) => Trial::Done(Err(e)),
+        }
+    }
+
+    /// J, Fe^tr = F Fp_n⁻¹ and τ_VM^tr, and τ^tr where it may be the result.
+    #[inline(always)]
+    fn trial_stress(&self, f: &M3<D>, old: &State<D>) -> Result<TrialStress<D>, MaterialError> {
         let j = det(f);
         if j.re() <= 0.0 || !j.re().is_finite() {
-            return Trial::Done(Err(MaterialError::InvertedDeformation { det_f: j.re() }));
+            return Err(MaterialError::InvertedDeformation { det_f: j.re() });
         }
-        let fe_trial = mul(f, &old.fp_inv);
+        let fe = mul(f, &old.fp_inv);
         // Yielding is decided in real arithmetic (φ^tr is not carried further); dual
         // scalars carry τ^tr only where it is the result.
-        let tau_trial = (D::NDERIV == 0).then(|| self.tau(&fe_trial, old.theta));
-        let tau_trial_vm = match &tau_trial {
+        let tau = (D::NDERIV == 0).then(|| self.tau(&fe, old.theta));
+        let tau_vm = match &tau {
             Some(tau) => von_mises(tau).re(),
-            None => von_mises(&self.re().tau(&re(&fe_trial), old.theta.re())),
+            None => von_mises(&self.re().tau(&re(&fe), old.theta.re())),
         };
-        let old_re = old.re();
-        let flow = self.flow.map(|_, v| v.re());
-        let onset = flow.onset(old_re.alpha, old_re.theta, self.thermal.theta0.re());
-        let phi_trial = tau_trial_vm - onset.tau_y0;
+        Ok(TrialStress { j, fe, tau, tau_vm })
+    }
+
+    /// Whether the trial state `stress` yields at the `onset` of flow, and its result if
+    /// it does not.
+    #[inline(always)]
+    fn decide(&self, stress: TrialStress<D>, old: &State<D>, onset: Onset) -> Trial<D> {
+        let phi_trial = stress.tau_vm - onset.tau_y0;
         if phi_trial <= 0.0 {
             let new = State {
                 dalpha: c::<D>(0.0),
                 ..*old
             };
-            let tau_trial = tau_trial.unwrap_or_else(|| self.tau(&fe_trial, old.theta));
-            return Trial::Done(Ok((tau_trial * j.recip(), new)));
+            let tau = stress
+                .tau
+                .unwrap_or_else(|| self.tau(&stress.fe, old.theta));
+            return Trial::Done(Ok((tau * stress.j.recip(), new)));
         }
         Trial::Yields { onset, phi_trial }
     }

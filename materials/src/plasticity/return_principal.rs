@@ -305,7 +305,7 @@ fn solve_local<L: Lane>(
     SolvedLanes {
         eps_trial,
         ratio,
-        dalpha: y[3].simd_exp(),
+        dalpha: y[3].exp_v(),
         failures,
     }
 }
@@ -386,7 +386,7 @@ fn first_guess<L: Lane>(
         rate_free.simd_min(previous),
         rate_free,
     );
-    let mut u = lowest.simd_ln();
+    let mut u = lowest.ln_v();
     if let Some(rate_only) = problem.path.rate_only_bound(q_trial / tau_y0) {
         u = u.simd_min(rate_only);
     }
@@ -415,11 +415,11 @@ fn first_guess<L: Lane>(
     let dalpha_max = (eps_dev.norm() - tau_y0 / L::splat(6f64.sqrt() * problem.g)) / k;
     let yield_strain = tau_y0 / g;
     let hencky_error = yield_strain * yield_strain;
-    let mut dalpha = u.simd_exp();
+    let mut dalpha = u.exp_v();
     let beyond = (k * (dalpha - dalpha_max)).simd_gt(hencky_error) & dalpha_max.simd_gt(zero);
     if beyond.any() {
         dalpha = select(beyond, dalpha_max, dalpha);
-        u = select(beyond, dalpha.simd_ln(), u);
+        u = select(beyond, dalpha.ln_v(), u);
     }
     let shift = n_trial * (k * dalpha);
     SVector::<L, 4>::new(
