@@ -110,6 +110,16 @@ pub fn von_mises<D: Scalar>(a: &M3<D>) -> D {
     norm(&dev(a)) * c::<D>(1.5f64.sqrt())
 }
 
+/// Whether every entry's real part is finite, without a branch per entry: Σ (x − x) is 0
+/// when every x is finite and NaN otherwise (∞ − ∞ and NaN − NaN are NaN).
+#[inline]
+pub fn all_finite<D: Scalar>(a: &M3<D>) -> bool {
+    a.as_slice()
+        .iter()
+        .fold(0.0, |sum, x| sum + (x.re() - x.re()))
+        == 0.0
+}
+
 /// Real part of every entry.
 pub fn re<D: Scalar>(a: &M3<D>) -> M3<f64> {
     a.map(|x| x.re())
@@ -118,4 +128,22 @@ pub fn re<D: Scalar>(a: &M3<D>) -> M3<f64> {
 /// Lift a real matrix to constant scalars.
 pub fn lift<D: Scalar>(a: &M3<f64>) -> M3<D> {
     a.map(|x| c::<D>(x))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn all_finite_finds_any_infinite_or_nan_entry() {
+        let a = M3::<f64>::from_fn(|i, j| 1e300 * (i as f64 - j as f64) + 0.5);
+        assert!(all_finite(&a));
+        for bad in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
+            for k in 0..9 {
+                let mut b = a;
+                b[k] = bad;
+                assert!(!all_finite(&b), "{bad} at {k}");
+            }
+        }
+    }
 }

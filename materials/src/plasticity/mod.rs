@@ -30,7 +30,7 @@ use crate::lanes::{pack, F64x4, MAX_LANES};
 use crate::material::{one_by_one, Deliver, Model, State};
 use crate::parameter_set;
 use crate::scalar::{c, Scalar};
-use crate::tensor::{det, lift, mul, re, von_mises, M3};
+use crate::tensor::{all_finite, det, lift, mul, re, von_mises, M3};
 use return_principal::Yielding;
 
 parameter_set! {
@@ -408,7 +408,7 @@ impl<D: Scalar> ElastoPlastic<D> {
             dalpha,
         };
         let sigma = tau * det(f).recip();
-        if !sigma.iter().all(|s| s.re().is_finite()) {
+        if !all_finite(&sigma) {
             return Err(MaterialError::NonFinite {
                 what: "Cauchy stress",
             });
