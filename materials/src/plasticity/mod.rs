@@ -198,8 +198,9 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
         self.after_return(f, dt, old, real)
     }
 
-    /// The principal return four points at a time (`return_principal::solve_batch`); one
-    /// at a time for dual scalars and the reference return.
+    /// The onsets of flow and the principal returns four points at a time
+    /// (`FlowStress::onset` in lanes, `return_principal::solve_batch`); one at a time for
+    /// dual scalars and the reference return.
     fn update_batch(&self, f: &[M3<D>], dt: f64, old: &[State<D>], deliver: &mut Deliver<D>) {
         if D::NDERIV > 0 || self.return_map == ReturnMap::Reference {
             return one_by_one(|f, old| self.update(f, dt, old), f, old, deliver);
