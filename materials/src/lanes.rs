@@ -2,9 +2,10 @@
 //! for a lane type `L`: `f64` for one point, `F64x4` for four (simba's `WideF64x4`, SIMD
 //! arithmetic over `wide::f64x4`: one AVX instruction per operation in the workspace's
 //! x86-64-v3 build, `.cargo/config.toml`; two SSE2 ones on the x86-64 baseline). Branches
-//! become lane masks (`select`), and exp, ln and pow are one vectorized routine for one
-//! point and for four (`elementary`), so each lane of a batch gives the one-point result
-//! to the bit, whatever it is grouped with.
+//! become lane masks (`select`); exp, ln and pow are the library's for one point and one
+//! vectorized routine for four (`elementary`, within 2 ulp of the library). Each lane is
+//! computed on its own, so a point's result does not depend on what it is grouped with,
+//! and equals its one-point result to round-off.
 
 use crate::elementary::Elementary;
 use crate::error::MaterialError;

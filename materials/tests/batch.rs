@@ -1,11 +1,38 @@
-//! `Material::update_batch` (four points in lockstep) gives each point's `update` to the
-//! bit: elastic, yielding and failing points mixed, groups that are not a multiple of
-//! four, every material file that ships, at first yield and in flow.
+//! `Material::update_batch` (four points in lockstep) gives each point's `update` to
+//! round-off (the lanes take exp, ln and pow from one vectorized routine, within 2 ulp of
+//! the library's: `materials::elementary`): elastic, yielding and failing points mixed,
+//! groups that are not a multiple of four, every material file that ships, at first yield
+//! and in flow.
 
 use materials::{load_material, Material, MaterialError, State};
 use nalgebra::Matrix3;
 
 type Update = Result<(Matrix3<f64>, State), MaterialError>;
+
+/// Relative agreement asked of σ, Fp⁻¹, α and θ: some 100 ulp, what a few ulp in the flow
+/// stress become through the return's Newton solve.
+const ROUND_OFF: f64 = 1e-13;
+
+/// Whether two updates agree to `ROUND_OFF` (the same error where they fail).
+fn agree(one: &Update, many: &Update) -> bool {
+    let close = |a: f64, b: f64, scale: f64| (a - b).abs() <= ROUND_OFF * scale;
+    match (one, many) {
+        (Ok((s1, n1)), Ok((s2, n2))) => {
+            let stress = s1.norm().max(1.0);
+            s1.iter().zip(s2.iter()).all(|(a, b)| close(*a, *b, stress))
+                && n1
+                    .fp_inv
+                    .iter()
+                    .zip(n2.fp_inv.iter())
+                    .all(|(a, b)| close(*a, *b, 1.0))
+                && close(n1.alpha, n2.alpha, n1.alpha.abs().max(1e-3))
+                && close(n1.dalpha, n2.dalpha, n1.alpha.abs().max(1e-3))
+                && close(n1.theta, n2.theta, n1.theta)
+        }
+        (Err(a), Err(b)) => a == b,
+        _ => false,
+    }
+}
 
 /// Point k's deformation after `step` increments of 4e-4 (a different mix of
 /// compression, shear and out-of-plane stretch per point; plane points for even k).
@@ -27,7 +54,7 @@ fn f_of(k: usize, step: usize) -> Matrix3<f64> {
 }
 
 #[test]
-fn batch_updates_equal_single_updates_to_the_bit() {
+fn batch_updates_equal_single_updates_to_round_off() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/materials");
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
@@ -53,7 +80,11 @@ fn batch_updates_equal_single_updates_to_the_bit() {
             m.update_batch(&f, dt, &states, &mut |i, r| batch[i] = Some(r));
             for (k, (one, many)) in single.iter().zip(&batch).enumerate() {
                 let many = many.as_ref().expect("every point delivered");
-                assert_eq!(one, many, "{} step {step} point {k}", file.display());
+                assert!(
+                    agree(one, many),
+                    "{} step {step} point {k}: {one:?} alone, {many:?} in a batch",
+                    file.display()
+                );
                 if let Ok((_, new)) = one {
                     plastic_seen += usize::from(new.alpha > states[k].alpha);
                     states[k] = *new;

@@ -181,9 +181,9 @@ impl Onset {
 
 impl FlowStress<f64> {
     /// τ_y(α_n, 0, θ_n) at `alpha_n` and `theta` [K] (reference temperature `theta0`), of
-    /// one point or a point per lane. Every point takes it at every step: JC's two powers
-    /// are the vectorized x^y (`elementary`), so four points cost about one library
-    /// `powf` each and a lane gives the one-point result to the bit.
+    /// one point or a point per lane. Every point takes it at every step: in lanes JC's two
+    /// powers are the vectorized x^y (`elementary`), four points for about the cost of one
+    /// library `powf`.
     pub fn onset<L: Lane>(&self, alpha_n: L, theta: L, theta0: f64) -> Onset<L> {
         let p = match self {
             FlowStress::JohnsonCook(p) => p,
