@@ -123,9 +123,13 @@ pub fn solve_lanes<L: Lane, const N: usize, J: Jacobian<L, N>>(
             let r_t_norm = r_t.amax();
             let decrease = r_norm * (L::splat(1.0) - L::splat(1e-4) * step);
             let accept = searching & (r_t_norm.simd_lt(decrease) | r_t_norm.simd_lt(tol));
-            x = select_matrix(accept, &trial, &x);
-            r = select_matrix(accept, &r_t, &r);
-            k = k_t.select(accept, k);
+            if accept.all() {
+                (x, r, k) = (trial, r_t, k_t);
+            } else {
+                x = select_matrix(accept, &trial, &x);
+                r = select_matrix(accept, &r_t, &r);
+                k = k_t.select(accept, k);
+            }
             searching = searching & !accept;
             if !searching.any() {
                 break;
