@@ -195,14 +195,21 @@ impl FlowStress<f64> {
         };
         let (zero, one) = (L::splat(0.0), L::splat(1.0));
         let theta_star = (theta - L::splat(theta0)) / L::splat(p.theta_m - theta0);
-        // 1 − θ*^M with θ* clamped to [0, 1], as `softening::johnson_cook`.
-        let warm = one - theta_star.simd_clamp(zero, one).powf_v(L::splat(p.m));
-        let thermal = select(
-            theta_star.simd_le(zero),
-            one,
-            select(theta_star.simd_ge(one), zero, warm),
-        );
-        let power = select(alpha_n.simd_gt(zero), alpha_n.powf_v(L::splat(p.n)), zero);
+        // 1 − θ*^M with θ* clamped to [0, 1], as `softening::johnson_cook`; the powers only
+        // where a lane needs them (a virgin point at θ0 needs neither).
+        let warming = theta_star.simd_gt(zero);
+        let thermal = match warming.any() {
+            true => {
+                let warm = one - theta_star.simd_clamp(zero, one).powf_v(L::splat(p.m));
+                select(warming, select(theta_star.simd_ge(one), zero, warm), one)
+            }
+            false => one,
+        };
+        let hardened = alpha_n.simd_gt(zero);
+        let power = match hardened.any() {
+            true => select(hardened, alpha_n.powf_v(L::splat(p.n)), zero),
+            false => zero,
+        };
         Onset {
             tau_y0: (L::splat(p.a) + L::splat(p.b) * power) * thermal,
             alpha_n,

@@ -12,8 +12,9 @@
 //!
 //! The local problem (first guess, 4×4 Newton, flow ratios) is written once for a lane
 //! type (`lanes`): `solve` takes one point, `solve_batch` four in lockstep, with the same
-//! result to round-off (the lanes' exp, ln and pow: `elementary`). The eigen decomposition and the assembly of Fp⁻¹ and τ stay per
-//! point. What the batch saves: `mpw bench` ("16 at once") and docs/performance.md.
+//! result to round-off (the lanes' exp, ln and pow: `elementary`). The eigen
+//! decomposition and the assembly of Fp⁻¹ and τ stay per point. What the batch saves:
+//! `mpw bench` ("16 at once") and docs/performance.md.
 
 use crate::error::MaterialError;
 use crate::flow_stress::{LogIncrementPath, Onset};
