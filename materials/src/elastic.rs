@@ -6,7 +6,7 @@
 
 use crate::parameter_set;
 use crate::scalar::{c, Scalar};
-use crate::tensor::{det, identity, mul_transpose_self, trace, M3};
+use crate::tensor::{det, mul_transpose_self, trace, M3};
 
 parameter_set! {
     /// Elastic constants and reference density.
@@ -47,7 +47,11 @@ impl<D: Scalar> Elastic<D> {
     pub fn tau(&self, fe: &M3<D>, dtheta: D, alpha_sigma: D) -> M3<D> {
         let b = mul_transpose_self(fe);
         let p = self.spherical(det(fe).ln(), dtheta, alpha_sigma);
-        (b - identity::<D>()) * self.shear_modulus() + identity::<D>() * p
+        let g = self.shear_modulus();
+        M3::from_fn(|i, j| match i == j {
+            true => (b[(i, i)] - c::<D>(1.0)) * g + p,
+            false => b[(i, j)] * g,
+        })
     }
 
     /// The spherical part Λ ln J − 3 α_σ κ (θ − θ0) of τ [Pa] (τ = G (b − I) + this · I).

@@ -66,19 +66,25 @@ pub fn mul_transpose_self<T: Ring>(a: &M3<T>) -> M3<T> {
     M3::new(e(0, 0), b01, b02, b01, e(1, 1), b12, b02, b12, e(2, 2))
 }
 
-/// Vᵀ a V for a real V (`a` in the basis of V's columns), each product of a real entry
-/// and a scalar costing what a real factor costs (for dual scalars half a dual product).
-pub fn rotate_into<D: Scalar>(v: &M3<f64>, a: &M3<D>) -> M3<D> {
-    let av =
-        M3::from_fn(|i, j| a[(i, 0)] * v[(0, j)] + a[(i, 1)] * v[(1, j)] + a[(i, 2)] * v[(2, j)]);
-    M3::from_fn(|i, j| av[(0, j)] * v[(0, i)] + av[(1, j)] * v[(1, i)] + av[(2, j)] * v[(2, i)])
+/// a b for a real `a`, each product of a real entry and a scalar costing what a real
+/// factor costs (for dual scalars half a dual product); entries summed in `mul`'s order.
+pub fn mul_real_left<D: Scalar>(a: &M3<f64>, b: &M3<D>) -> M3<D> {
+    M3::from_fn(|i, j| b[(0, j)] * a[(i, 0)] + b[(1, j)] * a[(i, 1)] + b[(2, j)] * a[(i, 2)])
 }
 
-/// V a Vᵀ for a real V (`a` back from the basis of V's columns), as `rotate_into`.
+/// a b for a real `b`, as `mul_real_left`.
+pub fn mul_real_right<D: Scalar>(a: &M3<D>, b: &M3<f64>) -> M3<D> {
+    M3::from_fn(|i, j| a[(i, 0)] * b[(0, j)] + a[(i, 1)] * b[(1, j)] + a[(i, 2)] * b[(2, j)])
+}
+
+/// Vᵀ a V for a real V (`a` in the basis of V's columns).
+pub fn rotate_into<D: Scalar>(v: &M3<f64>, a: &M3<D>) -> M3<D> {
+    mul_real_left(&v.transpose(), &mul_real_right(a, v))
+}
+
+/// V a Vᵀ for a real V (`a` back from the basis of V's columns).
 pub fn rotate_out<D: Scalar>(v: &M3<f64>, a: &M3<D>) -> M3<D> {
-    let av =
-        M3::from_fn(|i, j| a[(i, 0)] * v[(j, 0)] + a[(i, 1)] * v[(j, 1)] + a[(i, 2)] * v[(j, 2)]);
-    M3::from_fn(|i, j| av[(0, j)] * v[(i, 0)] + av[(1, j)] * v[(i, 1)] + av[(2, j)] * v[(i, 2)])
+    mul_real_left(v, &mul_real_right(a, &v.transpose()))
 }
 
 /// Inverse by the adjugate; `None` if the determinant's real part is zero.
@@ -144,6 +150,28 @@ mod tests {
                 b[k] = bad;
                 assert!(!all_finite(&b), "{bad} at {k}");
             }
+        }
+    }
+
+    /// A product with a real factor is the dual product with that factor lifted, to the
+    /// bit; the rotations undo each other to round-off.
+    #[test]
+    fn products_with_a_real_factor_are_the_dual_products() {
+        type D2 = crate::dual::Dual<2>;
+        let real = M3::<f64>::new(0.9, -0.2, 0.1, 0.3, 1.1, -0.4, 0.05, 0.2, 0.95);
+        let dual = M3::<D2>::from_fn(|i, j| {
+            let x = 1.0 + 0.1 * (3 * i + j) as f64;
+            D2::new(
+                x,
+                nalgebra::SVector::from([0.3 * x - 0.2, (i as f64) - 0.7 * j as f64]),
+            )
+        });
+        assert_eq!(mul_real_left(&real, &dual), mul(&lift(&real), &dual));
+        assert_eq!(mul_real_right(&dual, &real), mul(&dual, &lift(&real)));
+        let v = crate::sym_eigen::decompose(&(real * real.transpose())).vectors;
+        let back = rotate_out(&v, &rotate_into(&v, &dual));
+        for (x, y) in back.iter().zip(dual.iter()) {
+            assert!((x.re - y.re).abs() < 1e-14 && (x.eps - y.eps).norm() < 1e-14);
         }
     }
 }

@@ -142,18 +142,17 @@ impl<const D: usize> Grid<D> {
     }
 
     /// Offsets of the 2^D corners of a cell from its lower corner, in node numbers.
+    #[inline]
     pub fn corner_offsets(&self) -> [usize; 8] {
-        std::array::from_fn(|k| {
-            (0..D)
-                .map(|i| {
-                    if (k >> i) & 1 == 1 && k < corners(D) {
-                        self.strides[i]
-                    } else {
-                        0
-                    }
-                })
-                .sum()
-        })
+        let mut offsets = [0; 8];
+        for (k, offset) in offsets.iter_mut().enumerate().take(corners(D)) {
+            for (i, stride) in self.strides.iter().enumerate() {
+                if (k >> i) & 1 == 1 {
+                    *offset += stride;
+                }
+            }
+        }
+        offsets
     }
 
     /// Lattice coordinates of node number `index`.

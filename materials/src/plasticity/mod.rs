@@ -25,7 +25,7 @@ pub mod return_reference;
 
 use crate::elastic::Elastic;
 use crate::error::MaterialError;
-use crate::flow_stress::{FlowStress, Onset};
+use crate::flow_stress::{FlowStress, Onset, MOLTEN_THERMAL_FACTOR};
 use crate::lanes::{pack, F64x4, MAX_LANES};
 use crate::material::{one_by_one, Deliver, Model, State};
 use crate::parameter_set;
@@ -181,13 +181,17 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
         old: &State<D>,
         real: &State<f64>,
     ) -> Result<(M3<D>, State<D>), MaterialError> {
-        if real.dalpha <= 0.0 {
-            return self.update(f, dt, old);
-        }
-        let old_re = old.re();
+        let theta = old.theta.re();
         let flow = self.flow.map(|_, v| v.re());
-        let theta0 = self.thermal.theta0.re();
-        let molten = flow.onset(old_re.alpha, old_re.theta, theta0).is_molten();
+        let molten = flow.thermal_factor(theta, self.thermal.theta0.re()) < MOLTEN_THERMAL_FACTOR;
+        if real.dalpha <= 0.0 {
+            // The run kept the point elastic; a molten point that did not flow (a trial
+            // strain without deviator) takes the whole update and its molten derivative.
+            return match molten {
+                false => self.trial_stress(f, old).map(|s| self.stay_elastic(s, old)),
+                true => self.update(f, dt, old),
+            };
+        }
         let real = RealReturn {
             fp_inv: real.fp_inv,
             alpha: real.alpha,
@@ -257,8 +261,6 @@ struct TrialStress<D> {
     fe: M3<D>,
     /// τ^tr, in real arithmetic only (dual scalars compute it where it is the result).
     tau: Option<M3<D>>,
-    /// τ_VM^tr [Pa]
-    tau_vm: f64,
 }
 
 /// A return in real arithmetic: Fp⁻¹, α, and τ where the return gives it.
@@ -285,10 +287,10 @@ impl From<return_principal::Returned> for RealReturn {
     }
 }
 
-/// A return with the derivatives of its result: Fp⁻¹, Fe = F Fp⁻¹ and α.
+/// A return with the derivatives of its result: Fp⁻¹, τ and α.
 struct Flowed<D> {
     fp_inv: M3<D>,
-    fe: M3<D>,
+    tau: M3<D>,
     alpha: D,
 }
 
@@ -323,7 +325,7 @@ impl<D: Scalar> ElastoPlastic<D> {
         }
     }
 
-    /// J, Fe^tr = F Fp_n⁻¹ and τ_VM^tr, and τ^tr where it may be the result.
+    /// J, Fe^tr = F Fp_n⁻¹, and τ^tr where it may be the result (real scalars).
     #[inline(always)]
     fn trial_stress(&self, f: &M3<D>, old: &State<D>) -> Result<TrialStress<D>, MaterialError> {
         let j = det(f);
@@ -331,30 +333,41 @@ impl<D: Scalar> ElastoPlastic<D> {
             return Err(MaterialError::InvertedDeformation { det_f: j.re() });
         }
         let fe = mul(f, &old.fp_inv);
-        // Yielding is decided in real arithmetic (φ^tr is not carried further); dual
-        // scalars carry τ^tr only where it is the result.
+        // Dual scalars carry τ^tr only where it is the result.
         let tau = (D::NDERIV == 0).then(|| self.tau(&fe, old.theta));
-        let tau_vm = match &tau {
+        Ok(TrialStress { j, fe, tau })
+    }
+
+    /// τ_VM^tr of a trial state, in real arithmetic: yielding is decided there (φ^tr is
+    /// not carried further).
+    #[inline(always)]
+    fn trial_von_mises(&self, stress: &TrialStress<D>, old: &State<D>) -> f64 {
+        match &stress.tau {
             Some(tau) => von_mises(tau).re(),
-            None => von_mises(&self.re().tau(&re(&fe), old.theta.re())),
+            None => von_mises(&self.re().tau(&re(&stress.fe), old.theta.re())),
+        }
+    }
+
+    /// The elastic update from the trial state: σ = τ^tr / J, the history kept (Δα = 0).
+    #[inline(always)]
+    fn stay_elastic(&self, stress: TrialStress<D>, old: &State<D>) -> (M3<D>, State<D>) {
+        let new = State {
+            dalpha: c::<D>(0.0),
+            ..*old
         };
-        Ok(TrialStress { j, fe, tau, tau_vm })
+        let tau = stress
+            .tau
+            .unwrap_or_else(|| self.tau(&stress.fe, old.theta));
+        (tau * stress.j.recip(), new)
     }
 
     /// Whether the trial state `stress` yields at the `onset` of flow, and its result if
     /// it does not.
     #[inline(always)]
     fn decide(&self, stress: TrialStress<D>, old: &State<D>, onset: Onset) -> Trial<D> {
-        let phi_trial = stress.tau_vm - onset.tau_y0;
+        let phi_trial = self.trial_von_mises(&stress, old) - onset.tau_y0;
         if phi_trial <= 0.0 {
-            let new = State {
-                dalpha: c::<D>(0.0),
-                ..*old
-            };
-            let tau = stress
-                .tau
-                .unwrap_or_else(|| self.tau(&stress.fe, old.theta));
-            return Trial::Done(Ok((tau * stress.j.recip(), new)));
+            return Trial::Done(Ok(self.stay_elastic(stress, old)));
         }
         Trial::Yields { onset, phi_trial }
     }
@@ -377,19 +390,19 @@ impl<D: Scalar> ElastoPlastic<D> {
             (fp_inv, c::<D>(real.alpha), tau)
         } else {
             let (fp_inv, dalpha) = (&real.fp_inv, real.dalpha);
-            let Flowed { fp_inv, fe, alpha } = match (real.molten, self.return_map) {
-                (true, _) => return_principal_dual::molten_step(f, old)?,
+            let Flowed { fp_inv, tau, alpha } = match (real.molten, self.return_map) {
+                (true, _) => return_principal_dual::molten_step(self, f, old)?,
                 (false, ReturnMap::Principal) => {
                     return_principal_dual::implicit_step(self, f, old, dt, fp_inv, dalpha)?
                 }
                 (false, ReturnMap::Reference) => {
                     let (fp_inv, alpha) =
                         return_reference::implicit_step(self, f, old, dt, fp_inv, dalpha)?;
-                    let fe = mul(f, &fp_inv);
-                    Flowed { fp_inv, fe, alpha }
+                    let tau = self.tau(&mul(f, &fp_inv), old.theta);
+                    Flowed { fp_inv, tau, alpha }
                 }
             };
-            (fp_inv, alpha, self.tau(&fe, old.theta))
+            (fp_inv, alpha, tau)
         };
         // Δα as solved where it is real: α − α_n loses it below the last digit of α_n,
         // and the next return (and a derivative pass, `update_from_real`) starts from it.

@@ -17,10 +17,16 @@
 //!    K⁻¹_ab = ∂ε_a/∂ε_b^tr) where the two trial eigenvalues coincide within `COINCIDENT`
 //!    (the quotient's round-off and the limit's O(λ_a − λ_b) error are then both about
 //!    1e-8 of Θ).
-//! 4. Fe = M Fe^tr, Fp⁻¹ = F⁻¹ Fe and α = α_n + Δα, in dual arithmetic.
+//! 4. Fe = M Fe^tr and α = α_n + Δα in dual arithmetic, and Fp⁻¹ = F⁻¹ Fe from the real
+//!    F⁻¹: dFp⁻¹ = F⁻¹ (dFe − dF Fp⁻¹).
+//! 5. τ in the trial eigenbasis, where the real parts of M and b^tr are diagonal: the
+//!    elastic stretch b^e = M b^tr M has m_a² λ_a^tr on the diagonal and
+//!    (m_a λ_a^tr + m_b λ_b^tr) dM_ab + m_a m_b db^tr_ab off it, and ln J^e = Σ_a ε_a, so
+//!    Neo-Hooke's τ = G (b^e − I) + (Λ ln J^e − 3 α_σ κ (θ − θ0)) I needs neither a dual
+//!    b^e = Fe Feᵀ nor a logarithm.
 //!
 //! A point at or above melting (`return_principal::molten`) has ε_a = mean ε^tr in closed
-//! form: steps 1, 3 and 4 with ∂ε_a/∂ε_b^tr = 1/3 (`molten_step`).
+//! form: steps 1, 3, 4 and 5 with ∂ε_a/∂ε_b^tr = 1/3 (`molten_step`).
 //!
 //! Real parts agree with `return_principal::solve` to round-off (the step corrects the
 //! converged y* by the residual left by its Newton tolerance). The derivatives are those of
@@ -32,7 +38,10 @@ use crate::material::State;
 use crate::plasticity::{return_principal, ElastoPlastic, Flowed};
 use crate::scalar::{c, Scalar};
 use crate::sym_eigen;
-use crate::tensor::{inverse, mul, mul_transpose_self, re, rotate_into, rotate_out, M3};
+use crate::tensor::{
+    inverse, mul, mul_real_left, mul_real_right, mul_transpose_self, re, rotate_into, rotate_out,
+    M3,
+};
 use nalgebra::{Matrix3, SVector, Vector3};
 
 /// Relative gap of two trial eigenvalues below which Θ_ab takes its limit.
@@ -65,7 +74,7 @@ fn residual<E: Scalar>(
     )
 }
 
-/// Fp⁻¹, Fe and α with their derivatives, from the real return (`fp_inv`, `dalpha` = Δα)
+/// Fp⁻¹, τ and α with their derivatives, from the real return (`fp_inv`, `dalpha` = Δα)
 /// of the same F and old state.
 pub fn implicit_step<D: Scalar>(
     m: &ElastoPlastic<D>,
@@ -99,27 +108,33 @@ pub fn implicit_step<D: Scalar>(
         (0..4).fold(c::<D>(y_real[i]), |y_i, j| y_i - r[j] * k_inv[(i, j)])
     });
     let eps = Vector3::new(y[0], y[1], y[2]);
-    let (fp_inv, fe) = trial.flow_back(f, &eps, &k_inv.fixed_view::<3, 3>(0, 0).into_owned())?;
+    let deps = k_inv.fixed_view::<3, 3>(0, 0).into_owned();
+    let (fp_inv, tau) = trial.flow_back(m, f, old.theta, &eps, &deps)?;
     Ok(Flowed {
         fp_inv,
-        fe,
+        tau,
         alpha: old.alpha + y[3].exp(),
     })
 }
 
-/// Fp⁻¹, Fe and α with their derivatives for a point at or above melting
+/// Fp⁻¹, τ and α with their derivatives for a point at or above melting
 /// (`return_principal::molten`): the whole deviatoric trial strain flows, ε_a = mean ε^tr
 /// and Δα = √(2/3) ‖dev ε^tr‖, closed forms in ε^tr, so ∂ε_a/∂ε_b^tr = 1/3 takes the place
 /// of K⁻¹ in step 3.
-pub fn molten_step<D: Scalar>(f: &M3<D>, old: &State<D>) -> Result<Flowed<D>, MaterialError> {
+pub fn molten_step<D: Scalar>(
+    m: &ElastoPlastic<D>,
+    f: &M3<D>,
+    old: &State<D>,
+) -> Result<Flowed<D>, MaterialError> {
     let trial = TrialBasis::new(f, old);
     let mean = trial.eps.sum() / c::<D>(3.0);
     let dev = trial.eps.map(|e| e - mean);
     let dalpha = dev.dot(&dev).sqrt() * c::<D>((2.0f64 / 3.0).sqrt());
-    let (fp_inv, fe) = trial.flow_back(f, &Vector3::repeat(mean), &Matrix3::repeat(1.0 / 3.0))?;
+    let eps = Vector3::repeat(mean);
+    let (fp_inv, tau) = trial.flow_back(m, f, old.theta, &eps, &Matrix3::repeat(1.0 / 3.0))?;
     Ok(Flowed {
         fp_inv,
-        fe,
+        tau,
         alpha: old.alpha + dalpha,
     })
 }
@@ -150,23 +165,55 @@ impl<D: Scalar> TrialBasis<D> {
         }
     }
 
-    /// Fp⁻¹ = F⁻¹ Fe and Fe = M Fe^tr from the returned strains `eps` (ε_a) and their
-    /// real derivatives `deps` = ∂ε/∂ε^tr (steps 3 and 4).
+    /// Fp⁻¹ = F⁻¹ M Fe^tr and τ at temperature `theta` from the returned strains `eps`
+    /// (ε_a) and their real derivatives `deps` = ∂ε/∂ε^tr (steps 3 to 5).
     fn flow_back(
         &self,
+        m: &ElastoPlastic<D>,
         f: &M3<D>,
+        theta: D,
         eps: &Vector3<D>,
         deps: &Matrix3<f64>,
     ) -> Result<(M3<D>, M3<D>), MaterialError> {
         let ratio = Vector3::from_fn(|a, _| (eps[a] - self.eps[a]).exp());
         let flow_in_basis = flow_in_eigenbasis(&ratio, &self.in_basis, deps);
-        let flow = rotate_out(&self.vectors, &flow_in_basis);
-        let f_inv = inverse(f).ok_or(MaterialError::InvertedDeformation {
-            det_f: re(f).determinant(),
-        })?;
-        let fe = mul(&flow, &self.fe);
-        Ok((mul(&f_inv, &fe), fe))
+        let fe = mul(&rotate_out(&self.vectors, &flow_in_basis), &self.fe);
+        let fp_inv = plastic_part(f, &fe)?;
+        Ok((fp_inv, self.stress(m, theta, eps, &flow_in_basis)))
     }
+
+    /// τ from the returned strains `eps` and the flow M in the trial eigenbasis (step 5).
+    fn stress(&self, m: &ElastoPlastic<D>, theta: D, eps: &Vector3<D>, flow: &M3<D>) -> M3<D> {
+        let g = m.elastic.shear_modulus();
+        let ln_j = eps[0] + eps[1] + eps[2];
+        let p = m
+            .elastic
+            .spherical(ln_j, theta - m.thermal.theta0, m.thermal.alpha_sigma);
+        let trial = &self.in_basis;
+        // m_a λ_a^tr
+        let stretch = |a: usize| flow[(a, a)].re() * trial[(a, a)].re();
+        let tau = M3::from_fn(|a, b| match a == b {
+            true => (flow[(a, a)] * flow[(a, a)] * trial[(a, a)] - c::<D>(1.0)) * g + p,
+            false => {
+                let d_trial = trial[(a, b)] - c::<D>(trial[(a, b)].re());
+                let m_ab = flow[(a, a)].re() * flow[(b, b)].re();
+                (flow[(a, b)] * (stretch(a) + stretch(b)) + d_trial * m_ab) * g
+            }
+        });
+        rotate_out(&self.vectors, &tau)
+    }
+}
+
+/// Fp⁻¹ = F⁻¹ Fe with F⁻¹ real (step 4): dFp⁻¹ = F⁻¹ (dFe − dF Fp⁻¹), two products with a
+/// real factor where a dual inverse and a dual product would do the same.
+fn plastic_part<D: Scalar>(f: &M3<D>, fe: &M3<D>) -> Result<M3<D>, MaterialError> {
+    let f_re = re(f);
+    let f_inv = inverse(&f_re).ok_or(MaterialError::InvertedDeformation {
+        det_f: f_re.determinant(),
+    })?;
+    let fp_inv = mul(&f_inv, &re(fe));
+    let df = f.map(|x| x - c::<D>(x.re()));
+    Ok(mul_real_left(&f_inv, &(fe - mul_real_right(&df, &fp_inv))))
 }
 
 /// M = exp(−√(3/2) Δα N) in the trial eigenbasis, with its derivatives (step 3 of the
