@@ -6,9 +6,9 @@
 //! 1. The trial b^tr = Fe^tr Fe^trᵀ in the real eigenbasis V of its real part: the
 //!    eigenvalues λ_a^tr = (Vᵀ b^tr V)_aa carry their exact first derivatives (a
 //!    symmetric matrix's eigenvalue moves by v_aᵀ db v_a), and ε_a^tr = ½ ln λ_a^tr.
-//! 2. One Newton step in dual arithmetic from the converged real y*: y = y* − K⁻¹ r(y*),
-//!    K = ∂r/∂y real (`return_principal`'s hand Jacobian), r with dual ε^tr and
-//!    parameters, so dy = −K⁻¹ ∂r/∂(ε^tr, p) d(ε^tr, p).
+//! 2. The implicit function theorem at the converged real y*: dy = −K⁻¹ dr, K = ∂r/∂y
+//!    real (`return_principal`'s hand Jacobian), dr the residual's derivatives at fixed
+//!    y* (through ε^tr, and through τ_y/G: the parameters, α_n and θ_n).
 //! 3. The flow tensor M = exp(−√(3/2) Δα N) = Σ_a m_a v_a v_aᵀ, m_a = exp(ε_a − ε_a^tr), is
 //!    an isotropic function of b^tr; its derivative in the eigenbasis (Miehe's formula for
 //!    isotropic tensor functions) is dm_a on the diagonal and
@@ -28,8 +28,8 @@
 //! A point at or above melting (`return_principal::molten`) has ε_a = mean ε^tr in closed
 //! form: steps 1, 3, 4 and 5 with ∂ε_a/∂ε_b^tr = 1/3 (`molten_step`).
 //!
-//! Real parts agree with `return_principal::solve` to round-off (the step corrects the
-//! converged y* by the residual left by its Newton tolerance). The derivatives are those of
+//! Real parts are `return_principal::solve`'s y* (ε_a from its Fp⁻¹, its Δα) and what
+//! follows from them, so they agree with the real return to round-off. The derivatives are those of
 //! the reference return's implicit step (`return_reference::implicit_step`, the same
 //! equations in 10 unknowns), which the tests compare.
 
@@ -47,30 +47,26 @@ use nalgebra::{Matrix3, SVector, Vector3};
 /// Relative gap of two trial eigenvalues below which Θ_ab takes its limit.
 const COINCIDENT: f64 = 1e-8;
 
-/// The local problem's residual in any scalar type, at y = (ε_1..3, ln Δα):
-/// r_a = ε_a − ε_a^tr + √(3/2) Δα n_a (n = s/‖s‖, s_a = G (e^{2ε_a} − mean e^{2ε})) and
-/// r_4 = (√(3/2) ‖s‖ − τ_y(α_n + Δα, Δα/Δt, θ_n))/G: `return_principal`'s equations.
-fn residual<E: Scalar>(
-    m: &ElastoPlastic<E>,
-    y: &SVector<E, 4>,
-    eps_trial: &Vector3<E>,
-    old: &State<E>,
+/// The derivatives of the local problem's residual r(y) along the dual directions at a
+/// fixed y = (ε_1..3, ln Δα), `return_principal`'s equations:
+/// r_a = ε_a − ε_a^tr + √(3/2) Δα n_a moves with ε_a^tr alone (n = s/‖s‖ with
+/// s_a = G (e^{2ε_a} − mean e^{2ε}) does not depend on G), and
+/// r_4 = √(3/2) ‖s‖/G − τ_y(α_n + Δα, Δα/Δt, θ_n)/G with τ_y/G alone (‖s‖/G does not).
+/// Real parts zero.
+fn residual_derivatives<D: Scalar>(
+    m: &ElastoPlastic<D>,
+    eps_trial: &Vector3<D>,
+    old: &State<D>,
     dt: f64,
-) -> SVector<E, 4> {
-    let g = m.elastic.shear_modulus();
-    let k = c::<E>(1.5f64.sqrt());
-    let b = Vector3::new(y[0], y[1], y[2]).map(|e| (e * c::<E>(2.0)).exp());
-    let mean = (b[0] + b[1] + b[2]) / c::<E>(3.0);
-    let s = b.map(|b_a| (b_a - mean) * g);
-    let s_norm = s.dot(&s).sqrt();
-    let dalpha = y[3].exp();
-    let flow = s * (k * dalpha / s_norm);
-    let tau_y = m.tau_y(old.alpha + dalpha, dalpha, dt, old.theta);
-    SVector::<E, 4>::new(
-        y[0] - eps_trial[0] + flow[0],
-        y[1] - eps_trial[1] + flow[1],
-        y[2] - eps_trial[2] + flow[2],
-        (k * s_norm - tau_y) / g,
+    dalpha: f64,
+) -> SVector<D, 4> {
+    let moving = |x: D| c::<D>(x.re()) - x;
+    let tau_y = m.tau_y(old.alpha + c::<D>(dalpha), c::<D>(dalpha), dt, old.theta);
+    SVector::<D, 4>::new(
+        moving(eps_trial[0]),
+        moving(eps_trial[1]),
+        moving(eps_trial[2]),
+        moving(tau_y / m.elastic.shear_modulus()),
     )
 }
 
@@ -103,9 +99,9 @@ pub fn implicit_step<D: Scalar>(
         .ok_or(MaterialError::Singular {
             what: "principal return (implicit step)",
         })?;
-    let r = residual(m, &y_real.map(c::<D>), &trial.eps, old, dt);
+    let dr = residual_derivatives(m, &trial.eps, old, dt, dalpha);
     let y = SVector::<D, 4>::from_fn(|i, _| {
-        (0..4).fold(c::<D>(y_real[i]), |y_i, j| y_i - r[j] * k_inv[(i, j)])
+        (0..4).fold(c::<D>(y_real[i]), |y_i, j| y_i - dr[j] * k_inv[(i, j)])
     });
     let eps = Vector3::new(y[0], y[1], y[2]);
     let deps = k_inv.fixed_view::<3, 3>(0, 0).into_owned();
