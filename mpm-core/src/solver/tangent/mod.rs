@@ -24,7 +24,7 @@
 //! and step (`Cause::NonFinite`), with the output up to there kept.
 //!
 //! Cost: one dual update per point and step (the return mapping by the implicit function
-//! theorem: one Newton step in dual arithmetic from the run's converged return) and the
+//! theorem at the run's converged return, dy = −K⁻¹ dr) and the
 //! transfers in P + 1 lanes. Memory: (P + 1) numbers for each real one of the state; no tape.
 //!
 //! Carried: linear, CPDI and cpGIMP weights (module `stencil`), penalty contact with
