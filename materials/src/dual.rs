@@ -61,11 +61,11 @@ impl<const N: usize> Dual<N> {
     }
 }
 
-/// `wide(x, y)` entry by entry for the first four derivatives, one 256-bit operation
-/// (`wide::f64x4`), and `narrow(x_k, y_k)` for the others: the same IEEE operations in the
-/// same order either way (nothing is fused), so the same numbers as a loop, at about
-/// half the instructions of what the compiler makes of the loop on a `Dual` (it packs
-/// the value into the vector with shuffles).
+/// `wide(x, y)` entry by entry, four derivatives at a time in one 256-bit operation
+/// (`wide::f64x4`), and `narrow(x_k, y_k)` for the last N mod 4: the same IEEE operations
+/// in the same order either way (nothing is fused), so the same numbers as a loop, at
+/// about half the instructions of what the compiler makes of the loop on a `Dual` (it
+/// packs the value into the vector with shuffles).
 #[inline(always)]
 fn zip<const N: usize>(
     x: &SVector<f64, N>,
@@ -75,12 +75,13 @@ fn zip<const N: usize>(
 ) -> SVector<f64, N> {
     let (x, y) = (x.as_slice(), y.as_slice());
     let mut out = SVector::<f64, N>::zeros();
-    let head = if N >= 4 { 4 } else { 0 };
-    if head == 4 {
-        let four = |v: &[f64]| f64x4::new([v[0], v[1], v[2], v[3]]);
-        out.as_mut_slice()[..4].copy_from_slice(&wide(four(x), four(y)).to_array());
+    let four = |v: &[f64]| f64x4::new([v[0], v[1], v[2], v[3]]);
+    let whole = N - N % 4;
+    for k in (0..whole).step_by(4) {
+        let result = wide(four(&x[k..]), four(&y[k..]));
+        out.as_mut_slice()[k..k + 4].copy_from_slice(&result.to_array());
     }
-    for k in head..N {
+    for k in whole..N {
         out[k] = narrow(x[k], y[k]);
     }
     out
@@ -635,10 +636,10 @@ mod tests {
     use num_dual::{DualNum, DualSVec64};
     use num_traits::Signed;
 
-    /// x with derivatives (1, −0.5, 0.25, 2, −1.5, 0)·`scale` (the first `N`) in both
-    /// representations.
+    /// x with derivatives (1, −0.5, 0.25, 2, −1.5, 0, 3, −0.125, 0.75)·`scale` (the first
+    /// `N`) in both representations.
     fn pair<const N: usize>(x: f64, scale: f64) -> (Dual<N>, DualSVec64<N>) {
-        let pattern = [1.0, -0.5, 0.25, 2.0, -1.5, 0.0];
+        let pattern = [1.0, -0.5, 0.25, 2.0, -1.5, 0.0, 3.0, -0.125, 0.75];
         let eps = nalgebra::SVector::<f64, N>::from_fn(|k, _| pattern[k] * scale);
         (
             Dual::new(x, eps),
@@ -663,12 +664,14 @@ mod tests {
 
     /// Every arithmetic rule and elementary function gives num-dual's numbers to the bit,
     /// on arguments inside each function's domain: with three directions (entry by entry),
-    /// four (one 256-bit operation) and six (four in one, two by entry; one derivative 0).
+    /// four (one 256-bit operation), six (four in one, two by entry; one derivative 0)
+    /// and nine (two 256-bit operations and one entry).
     #[test]
     fn every_rule_gives_num_duals_numbers_to_the_bit() {
         every_rule::<3>();
         every_rule::<4>();
         every_rule::<6>();
+        every_rule::<9>();
     }
 
     fn every_rule<const N: usize>() {
