@@ -5,8 +5,8 @@
 //! It follows `num_dual::DualSVec64` rule for rule (product, quotient and chain rules with
 //! the same expressions, so the same numbers to the bit for finite operands) but keeps
 //! the derivative part as a plain vector of `N` numbers where `num-dual` keeps an
-//! optional one: no branch on every operation, and the `N` parts sit in one SIMD register
-//! for `N` ≤ 4 (two for up to 8). The one difference: where `num-dual` has no derivative
+//! optional one: no branch on every operation, and every whole four of the `N` parts is
+//! one 256-bit operation (`zip`). The one difference: where `num-dual` has no derivative
 //! part and the other operand is infinite or NaN, this type gives 0 · ∞ = NaN in the
 //! derivative part instead of none; the derivative pass stops on a non-finite derivative.
 //!
