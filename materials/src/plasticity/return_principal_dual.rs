@@ -147,6 +147,7 @@ struct TrialBasis<D> {
 }
 
 impl<D: Scalar> TrialBasis<D> {
+    #[inline(always)]
     fn new(f: &M3<D>, old: &State<D>) -> Self {
         let fe = mul(f, &old.fp_inv);
         let b = mul_transpose_self(&fe);
@@ -163,6 +164,7 @@ impl<D: Scalar> TrialBasis<D> {
 
     /// Fp⁻¹ = F⁻¹ M Fe^tr and τ at temperature `theta` from the returned strains `eps`
     /// (ε_a) and their real derivatives `deps` = ∂ε/∂ε^tr (steps 3 to 5).
+    #[inline(always)]
     fn flow_back(
         &self,
         m: &ElastoPlastic<D>,
@@ -179,6 +181,7 @@ impl<D: Scalar> TrialBasis<D> {
     }
 
     /// τ from the returned strains `eps` and the flow M in the trial eigenbasis (step 5).
+    #[inline(always)]
     fn stress(&self, m: &ElastoPlastic<D>, theta: D, eps: &Vector3<D>, flow: &M3<D>) -> M3<D> {
         let g = m.elastic.shear_modulus();
         let ln_j = eps[0] + eps[1] + eps[2];
@@ -202,6 +205,7 @@ impl<D: Scalar> TrialBasis<D> {
 
 /// Fp⁻¹ = F⁻¹ Fe with F⁻¹ real (step 4): dFp⁻¹ = F⁻¹ (dFe − dF Fp⁻¹), two products with a
 /// real factor where a dual inverse and a dual product would do the same.
+#[inline(always)]
 fn plastic_part<D: Scalar>(f: &M3<D>, fe: &M3<D>) -> Result<M3<D>, MaterialError> {
     let f_re = re(f);
     let f_inv = inverse(&f_re).ok_or(MaterialError::InvertedDeformation {
@@ -215,6 +219,7 @@ fn plastic_part<D: Scalar>(f: &M3<D>, fe: &M3<D>) -> Result<M3<D>, MaterialError
 /// M = exp(−√(3/2) Δα N) in the trial eigenbasis, with its derivatives (step 3 of the
 /// module doc): `ratio` the m_a, `in_basis` Vᵀ b^tr V (diagonal λ_a^tr), `deps`
 /// ∂ε_a/∂ε_b^tr.
+#[inline(always)]
 fn flow_in_eigenbasis<D: Scalar>(
     ratio: &Vector3<D>,
     in_basis: &M3<D>,
