@@ -97,6 +97,7 @@ pub fn inverse<D: Scalar>(a: &M3<D>) -> Option<M3<D>> {
 }
 
 /// Deviatoric part `a − tr(a)/3 I`.
+#[inline]
 pub fn dev<D: Scalar>(a: &M3<D>) -> M3<D> {
     a - identity::<D>() * (trace(a) / c::<D>(3.0))
 }
@@ -112,6 +113,7 @@ pub fn norm<D: Scalar>(a: &M3<D>) -> D {
 }
 
 /// von Mises equivalent `√(3/2) ‖dev a‖`.
+#[inline]
 pub fn von_mises<D: Scalar>(a: &M3<D>) -> D {
     norm(&dev(a)) * c::<D>(1.5f64.sqrt())
 }
