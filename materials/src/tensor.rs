@@ -60,10 +60,25 @@ pub fn mul<T: Ring>(a: &M3<T>, b: &M3<T>) -> M3<T> {
 /// (each entry sums a_i0 a_j0 + a_i1 a_j1 + a_i2 a_j2 in that order).
 #[inline]
 pub fn mul_transpose_self<T: Ring>(a: &M3<T>) -> M3<T> {
-    let e =
-        |i: usize, j: usize| a[(i, 0)] * a[(j, 0)] + a[(i, 1)] * a[(j, 1)] + a[(i, 2)] * a[(j, 2)];
-    let (b01, b02, b12) = (e(0, 1), e(0, 2), e(1, 2));
-    M3::new(e(0, 0), b01, b02, b01, e(1, 1), b12, b02, b12, e(2, 2))
+    symmetric(|i, j| a[(i, 0)] * a[(j, 0)] + a[(i, 1)] * a[(j, 1)] + a[(i, 2)] * a[(j, 2)])
+}
+
+/// The symmetric matrix with `entry(i, j)` on and above the diagonal (i ≤ j), mirrored
+/// below it: six entries formed instead of nine.
+#[inline(always)]
+pub fn symmetric<T: Ring>(entry: impl Fn(usize, usize) -> T) -> M3<T> {
+    let (e01, e02, e12) = (entry(0, 1), entry(0, 2), entry(1, 2));
+    M3::new(
+        entry(0, 0),
+        e01,
+        e02,
+        e01,
+        entry(1, 1),
+        e12,
+        e02,
+        e12,
+        entry(2, 2),
+    )
 }
 
 /// a b for a real `a`, each product of a real entry and a scalar costing what a real
@@ -77,14 +92,18 @@ pub fn mul_real_right<D: Scalar>(a: &M3<D>, b: &M3<f64>) -> M3<D> {
     M3::from_fn(|i, j| a[(i, 0)] * b[(0, j)] + a[(i, 1)] * b[(1, j)] + a[(i, 2)] * b[(2, j)])
 }
 
-/// Vᵀ a V for a real V (`a` in the basis of V's columns).
+/// Vᵀ a V for a real V and a symmetric `a` (`a` in the basis of V's columns): the entries
+/// of `mul_real_left(Vᵀ, a V)` on and above the diagonal, mirrored.
 pub fn rotate_into<D: Scalar>(v: &M3<f64>, a: &M3<D>) -> M3<D> {
-    mul_real_left(&v.transpose(), &mul_real_right(a, v))
+    let av = mul_real_right(a, v);
+    symmetric(|i, j| av[(0, j)] * v[(0, i)] + av[(1, j)] * v[(1, i)] + av[(2, j)] * v[(2, i)])
 }
 
-/// V a Vᵀ for a real V (`a` back from the basis of V's columns).
+/// V a Vᵀ for a real V and a symmetric `a` (`a` back from the basis of V's columns), as
+/// `rotate_into`.
 pub fn rotate_out<D: Scalar>(v: &M3<f64>, a: &M3<D>) -> M3<D> {
-    mul_real_left(v, &mul_real_right(a, &v.transpose()))
+    let av = mul_real_right(a, &v.transpose());
+    symmetric(|i, j| av[(0, j)] * v[(i, 0)] + av[(1, j)] * v[(i, 1)] + av[(2, j)] * v[(i, 2)])
 }
 
 /// Inverse by the adjugate; `None` if the determinant's real part is zero.
@@ -156,7 +175,8 @@ mod tests {
     }
 
     /// A product with a real factor is the dual product with that factor lifted, to the
-    /// bit; the rotations undo each other to round-off.
+    /// bit; a rotation of a symmetric matrix is the two products' upper triangle, mirrored,
+    /// and the rotations undo each other to round-off.
     #[test]
     fn products_with_a_real_factor_are_the_dual_products() {
         type D2 = crate::dual::Dual<2>;
@@ -171,8 +191,17 @@ mod tests {
         assert_eq!(mul_real_left(&real, &dual), mul(&lift(&real), &dual));
         assert_eq!(mul_real_right(&dual, &real), mul(&dual, &lift(&real)));
         let v = crate::sym_eigen::decompose(&(real * real.transpose())).vectors;
-        let back = rotate_out(&v, &rotate_into(&v, &dual));
-        for (x, y) in back.iter().zip(dual.iter()) {
+        let sym = dual + dual.transpose();
+        let products = mul_real_left(&v.transpose(), &mul_real_right(&sym, &v));
+        let rotated = rotate_into(&v, &sym);
+        for i in 0..3 {
+            for j in i..3 {
+                assert_eq!(rotated[(i, j)], products[(i, j)]);
+                assert_eq!(rotated[(j, i)], products[(i, j)]);
+            }
+        }
+        let back = rotate_out(&v, &rotated);
+        for (x, y) in back.iter().zip(sym.iter()) {
             assert!((x.re - y.re).abs() < 1e-14 && (x.eps - y.eps).norm() < 1e-14);
         }
     }

@@ -40,7 +40,7 @@ use crate::scalar::{c, Scalar};
 use crate::sym_eigen;
 use crate::tensor::{
     inverse, mul, mul_real_left, mul_real_right, mul_transpose_self, re, rotate_into, rotate_out,
-    M3,
+    symmetric, M3,
 };
 use nalgebra::{Matrix3, SVector, Vector3};
 
@@ -191,7 +191,7 @@ impl<D: Scalar> TrialBasis<D> {
         let trial = &self.in_basis;
         // m_a λ_a^tr
         let stretch = |a: usize| flow[(a, a)].re() * trial[(a, a)].re();
-        let tau = M3::from_fn(|a, b| match a == b {
+        let tau = symmetric(|a, b| match a == b {
             true => (flow[(a, a)] * flow[(a, a)] * trial[(a, a)] - c::<D>(1.0)) * g + p,
             false => {
                 let d_trial = trial[(a, b)] - c::<D>(trial[(a, b)].re());
@@ -240,7 +240,7 @@ fn flow_in_eigenbasis<D: Scalar>(
             0.5 * (slope(a, a) - slope(a, b) + slope(b, b) - slope(b, a))
         }
     };
-    M3::<D>::from_fn(|a, b| {
+    symmetric(|a, b| {
         if a == b {
             ratio[a]
         } else {
