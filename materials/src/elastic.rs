@@ -6,7 +6,7 @@
 
 use crate::parameter_set;
 use crate::scalar::{c, Scalar};
-use crate::tensor::{det, mul_transpose_self, trace, M3};
+use crate::tensor::{det, mul_transpose_self, symmetric, trace, M3};
 
 parameter_set! {
     /// Elastic constants and reference density.
@@ -44,11 +44,18 @@ impl<D: Scalar> Elastic<D> {
     /// Kirchhoff stress of the elastic part `fe`, with the thermal coupling term of
     /// eq. 4.22 for a temperature rise `dtheta` = θ − θ0 and expansion coefficient
     /// `alpha_sigma`.
+    #[inline]
     pub fn tau(&self, fe: &M3<D>, dtheta: D, alpha_sigma: D) -> M3<D> {
-        let b = mul_transpose_self(fe);
-        let p = self.spherical(det(fe).ln(), dtheta, alpha_sigma);
+        self.tau_of_stretch(&mul_transpose_self(fe), det(fe).ln(), dtheta, alpha_sigma)
+    }
+
+    /// τ = G (b − I) + (Λ ln J − 3 α_σ κ (θ − θ0)) I from the left stretch b = Fe Feᵀ
+    /// (symmetric: its entries on and above the diagonal are read) and ln J = ln det Fe.
+    #[inline]
+    pub fn tau_of_stretch(&self, b: &M3<D>, ln_j: D, dtheta: D, alpha_sigma: D) -> M3<D> {
+        let p = self.spherical(ln_j, dtheta, alpha_sigma);
         let g = self.shear_modulus();
-        M3::from_fn(|i, j| match i == j {
+        symmetric(|i, j| match i == j {
             true => (b[(i, i)] - c::<D>(1.0)) * g + p,
             false => b[(i, j)] * g,
         })

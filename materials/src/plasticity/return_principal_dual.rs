@@ -60,13 +60,14 @@ fn residual_derivatives<D: Scalar>(
     dt: f64,
     dalpha: f64,
 ) -> SVector<D, 4> {
-    let moving = |x: D| c::<D>(x.re()) - x;
+    // −dx: the derivative part of x, negated (r_a = … − ε_a^tr, r_4 = … − τ_y/G)
+    let minus_d = |x: D| c::<D>(x.re()) - x;
     let tau_y = m.tau_y(old.alpha + c::<D>(dalpha), c::<D>(dalpha), dt, old.theta);
     SVector::<D, 4>::new(
-        moving(eps_trial[0]),
-        moving(eps_trial[1]),
-        moving(eps_trial[2]),
-        moving(tau_y / m.elastic.shear_modulus()),
+        minus_d(eps_trial[0]),
+        minus_d(eps_trial[1]),
+        minus_d(eps_trial[2]),
+        minus_d(tau_y / m.elastic.shear_modulus()),
     )
 }
 
@@ -180,25 +181,26 @@ impl<D: Scalar> TrialBasis<D> {
         Ok((fp_inv, self.stress(m, theta, eps, &flow_in_basis)))
     }
 
-    /// τ from the returned strains `eps` and the flow M in the trial eigenbasis (step 5).
+    /// τ from the returned strains `eps` and the flow M in the trial eigenbasis (step 5):
+    /// Neo-Hooke's τ of the elastic stretch b^e = M b^tr M and ln J^e = Σ_a ε_a.
     #[inline(always)]
     fn stress(&self, m: &ElastoPlastic<D>, theta: D, eps: &Vector3<D>, flow: &M3<D>) -> M3<D> {
-        let g = m.elastic.shear_modulus();
-        let ln_j = eps[0] + eps[1] + eps[2];
-        let p = m
-            .elastic
-            .spherical(ln_j, theta - m.thermal.theta0, m.thermal.alpha_sigma);
         let trial = &self.in_basis;
         // m_a λ_a^tr
         let stretch = |a: usize| flow[(a, a)].re() * trial[(a, a)].re();
-        let tau = symmetric(|a, b| match a == b {
-            true => (flow[(a, a)] * flow[(a, a)] * trial[(a, a)] - c::<D>(1.0)) * g + p,
+        let elastic_stretch = symmetric(|a, b| match a == b {
+            true => flow[(a, a)] * flow[(a, a)] * trial[(a, a)],
             false => {
                 let d_trial = trial[(a, b)] - c::<D>(trial[(a, b)].re());
                 let m_ab = flow[(a, a)].re() * flow[(b, b)].re();
-                (flow[(a, b)] * (stretch(a) + stretch(b)) + d_trial * m_ab) * g
+                flow[(a, b)] * (stretch(a) + stretch(b)) + d_trial * m_ab
             }
         });
+        let ln_j = eps[0] + eps[1] + eps[2];
+        let (dtheta, alpha_sigma) = (theta - m.thermal.theta0, m.thermal.alpha_sigma);
+        let tau = m
+            .elastic
+            .tau_of_stretch(&elastic_stretch, ln_j, dtheta, alpha_sigma);
         rotate_out(&self.vectors, &tau)
     }
 }
