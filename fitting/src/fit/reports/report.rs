@@ -6,7 +6,8 @@
 
 use crate::fit::levels::model::{with_values, Material};
 use crate::fit::objective::Block;
-use crate::fit::optimize::run::FitResult;
+use crate::fit::optimize::run::{FitResult, StageResult};
+use crate::fit::optimize::trace::INTERRUPTED;
 use crate::fit::sets::fit_set::FitSet;
 use crate::fit::statistics::identifiability;
 use crate::fit::statistics::scatter::scatter;
@@ -197,7 +198,10 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
         .map(|s| {
             let best = &s.runs[s.best];
             let stopped_at = at_bounds(set, &s.free, &s.values);
+            // a stage with an interrupted start is not an optimum even if its best start
+            // converged: the stopped start might have gone lower
             let converged = best.converged
+                && !s.interrupted()
                 && stopped_at.is_empty()
                 && s.correlation.iter().flatten().all(|r| r.is_finite());
             StageRow {
@@ -252,7 +256,7 @@ fn build(set: &FitSet, result: &FitResult) -> ReportFile {
                 ad_jacobian_evaluations: s.jacobians,
                 iterations: s.runs.iter().map(|r| r.iterations).sum(),
                 wall_time_s: s.wall_s,
-                termination: best.termination.clone(),
+                termination: termination(s),
                 interrupted: s.interrupted(),
                 converged,
             }
@@ -289,6 +293,19 @@ pub fn show(name: &str, v: f64) -> String {
     match quantity {
         Some(materials::parameters::Quantity::Stress) => format!("{:.2} MPa", v * 1e-6),
         _ => format!("{v:.5}"),
+    }
+}
+
+/// Why a stage stopped: its best start's reason, or, if a start was interrupted, that
+/// (naming the start whose point is reported).
+fn termination(s: &StageResult) -> String {
+    match s.runs.iter().position(|r| r.interrupted) {
+        Some(k) => format!(
+            "{INTERRUPTED} (in start {}; the values are start {}'s)",
+            k + 1,
+            s.best + 1
+        ),
+        None => s.runs[s.best].termination.clone(),
     }
 }
 
@@ -640,4 +657,57 @@ pub fn sanitize(name: &str) -> String {
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fit::optimize::trace::OptimResult;
+
+    fn run(cost: f64, converged: bool, interrupted: bool) -> OptimResult {
+        OptimResult {
+            optimizer: "lm".into(),
+            u: vec![0.0],
+            cost,
+            iterations: 3,
+            termination: match interrupted {
+                true => INTERRUPTED.into(),
+                false => "converged".into(),
+            },
+            converged,
+            interrupted,
+            history: Vec::new(),
+            wall_s: 0.0,
+        }
+    }
+
+    #[test]
+    fn a_stage_whose_later_start_was_stopped_reports_the_interrupt_not_its_best_start() {
+        let stage = StageResult {
+            free: vec!["A".into()],
+            experiments: vec![0],
+            values: vec![1.0],
+            std_errors: vec![f64::NAN],
+            correlation: Vec::new(),
+            contact: Vec::new(),
+            cost: 1.0,
+            samples: 10,
+            runs: vec![run(1.0, true, false), run(2.0, false, true)],
+            best: 0,
+            evaluations: 0,
+            jacobians: 0,
+            wall_s: 0.0,
+        };
+        let why = termination(&stage);
+        assert!(why.starts_with(INTERRUPTED), "{why}");
+        assert!(
+            why.ends_with("(in start 2; the values are start 1's)"),
+            "{why}"
+        );
+        let finished = StageResult {
+            runs: vec![run(1.0, true, false)],
+            ..stage
+        };
+        assert_eq!(termination(&finished), "converged");
+    }
 }
