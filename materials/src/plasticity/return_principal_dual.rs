@@ -83,20 +83,20 @@ pub fn implicit_step<D: Scalar>(
 ) -> Result<Flowed<D>, MaterialError> {
     let trial = TrialBasis::new(f, old);
     let (m_re, old_re) = (m.re(), old.re());
-    let fe = re(f) * fp_inv;
-    let b = trial.vectors.transpose() * fe * fe.transpose() * trial.vectors;
+    // λ_a^e = (Vᵀ Fe Feᵀ V)_aa = |Feᵀ v_a|², Fe = F Fp⁻¹ of the run's return
+    let fe_t = (re(f) * fp_inv).transpose();
+    let stretch = |a: usize| (fe_t * trial.vectors.column(a)).norm_squared();
     let y_real = SVector::<f64, 4>::new(
-        0.5 * b[(0, 0)].ln(),
-        0.5 * b[(1, 1)].ln(),
-        0.5 * b[(2, 2)].ln(),
+        0.5 * stretch(0).ln(),
+        0.5 * stretch(1).ln(),
+        0.5 * stretch(2).ln(),
         dalpha.ln(),
     );
     let onset = m_re
         .flow
         .onset(old_re.alpha, old_re.theta, m_re.thermal.theta0);
     let eps_trial_re = trial.eps.map(|e| e.re());
-    let k_inv = return_principal::local_jacobian(&m_re, eps_trial_re, &onset, dt, &y_real)
-        .try_inverse()
+    let k_inv = return_principal::local_jacobian_inverse(&m_re, eps_trial_re, &onset, dt, &y_real)
         .ok_or(MaterialError::Singular {
             what: "principal return (implicit step)",
         })?;
@@ -107,10 +107,12 @@ pub fn implicit_step<D: Scalar>(
     let eps = Vector3::new(y[0], y[1], y[2]);
     let deps = k_inv.fixed_view::<3, 3>(0, 0).into_owned();
     let (fp_inv, tau) = trial.flow_back(m, f, old.theta, &eps, &deps)?;
+    // Δα = e^{y_4}: d(Δα) = Δα dy_4, its value the run's
+    let dalpha_d = (y[3] - c::<D>(y_real[3]) + c::<D>(1.0)) * c::<D>(dalpha);
     Ok(Flowed {
         fp_inv,
         tau,
-        alpha: old.alpha + y[3].exp(),
+        alpha: old.alpha + dalpha_d,
     })
 }
 

@@ -115,13 +115,16 @@ impl<const D: usize> Sources<'_, D> {
         let p = self.p;
         let w = self.weights.stencil(i);
         let m = p.mass[i];
-        let share = PointShare::new(
-            m,
-            &p.velocity[i],
-            self.force[i] + self.body_force * m,
-            (&p.stress[i], p.volume[i], &p.position[i]),
-            self.kinematics,
-        );
+        let share = match t.force {
+            true => PointShare::new(
+                m,
+                &p.velocity[i],
+                self.force[i] + self.body_force * m,
+                (&p.stress[i], p.volume[i], &p.position[i]),
+                self.kinematics,
+            ),
+            false => PointShare::without_forces(m, &p.velocity[i]),
+        };
         for (c, &index) in w.node.iter().enumerate() {
             share.add_to(&mut nodes[index as usize - start], t, w.n[c], &w.grad[c]);
         }
@@ -154,6 +157,19 @@ impl<const D: usize, T: Scalar> PointShare<D, T> {
             external,
             stress_volume: stress.fixed_view::<D, D>(0, 0).into_owned() * volume,
             hoop: kinematics.hoop_force(stress, volume, x),
+        }
+    }
+
+    /// The share of a transfer without forces (`Transfer::MOMENTUM`): mass and momentum,
+    /// the force terms zero.
+    #[inline]
+    pub(super) fn without_forces(mass: f64, velocity: &SVector<T, D>) -> Self {
+        PointShare {
+            mass,
+            momentum: velocity * c::<T>(mass),
+            external: SVector::zeros(),
+            stress_volume: SMatrix::zeros(),
+            hoop: T::zero(),
         }
     }
 

@@ -348,7 +348,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             self.nodes.clear();
             self.nodes.resize(s.grid.nodes.len(), Node::zero());
             let stride = s.grid.strides[D - 1];
-            let rows = (s.grid.dims[D - 1], self.stencils.support(stride));
+            let rows = (s.grid.dims[D - 1], self.stencils.support());
             let stencils = &self.stencils;
             (self.slabs).bucket(s.particles.len(), rows, |i| stencils.lowest(i) / stride);
         }
@@ -369,7 +369,13 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                 |(k, start, nodes)| {
                     for &i in self.slabs.points(k) {
                         let i = i as usize;
-                        let share = self.share(s, i);
+                        let share = match t.force {
+                            true => self.share(s, i),
+                            false => PointShare::without_forces(
+                                s.particles.mass[i],
+                                &self.velocity(s, i),
+                            ),
+                        };
                         let (node, n, grad) = self.stencils.of(i);
                         for k in 0..node.len() {
                             share.add_to(&mut nodes[node[k] as usize - start], t, n[k], &grad[k]);

@@ -60,6 +60,10 @@ impl SmoothKernel {
 pub(super) struct DualStencils<const D: usize, const P: usize> {
     room: usize,
     len: Vec<u8>,
+    /// Each point's lowest node number and the node rows (along the last axis) its
+    /// entries span, found as they are filled.
+    lowest: Vec<u32>,
+    rows: Vec<u32>,
     node: Vec<u32>,
     n: Vec<Dual<P>>,
     grad: Vec<SVector<Dual<P>, D>>,
@@ -81,6 +85,8 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
         DualStencils {
             room,
             len: vec![0; count],
+            lowest: vec![0; count],
+            rows: vec![1; count],
             node: vec![0; count * room],
             n: vec![Dual::from_re(0.0); count * room],
             grad: vec![SVector::zeros(); count * room],
@@ -99,22 +105,28 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
     }
 
     /// Point `i`'s lowest node number.
+    #[inline]
     pub(super) fn lowest(&self, i: usize) -> usize {
-        let (node, _, _) = self.of(i);
-        node.iter().min().map_or(0, |&n| n as usize)
+        self.lowest[i] as usize
     }
 
-    /// Node rows (of `stride` nodes) that any point's entries span, at most.
-    pub(super) fn support(&self, stride: usize) -> usize {
-        let span = |i: usize| {
-            let (node, _, _) = self.of(i);
-            let rows = node.iter().map(|&n| n as usize / stride);
-            match (rows.clone().min(), rows.max()) {
-                (Some(low), Some(high)) => high - low + 1,
-                _ => 1,
-            }
+    /// Node rows (along the last axis) that any point's entries span, at most.
+    pub(super) fn support(&self) -> usize {
+        self.rows.iter().max().map_or(1, |&r| r as usize).max(2)
+    }
+
+    /// Record point `i`'s `len` entries, lowest and highest node `low` and `high` (rows
+    /// of `stride` nodes).
+    #[inline]
+    fn close(&mut self, i: usize, len: usize, (low, high): (u32, u32), stride: usize) {
+        self.len[i] = len as u8;
+        (self.lowest[i], self.rows[i]) = match len {
+            0 => (0, 1),
+            _ => (
+                low,
+                (high as usize / stride - low as usize / stride + 1) as u32,
+            ),
         };
-        (0..self.len.len()).map(span).max().unwrap_or(1).max(2)
     }
 
     /// Evaluate point `i` at x with F and reference half-widths `half` on `grid`.
@@ -126,9 +138,11 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
         (x, f, half): (&SVector<Dual<P>, D>, &Matrix3<Dual<P>>, &SVector<f64, D>),
     ) {
         let start = i * self.room;
-        let mut len = 0;
+        let (mut len, mut low, mut high) = (0, u32::MAX, 0);
         let mut push = |node: i64, n: Dual<P>, grad: SVector<Dual<P>, D>| {
-            self.node[start + len] = node as u32;
+            let node = node as u32;
+            (low, high) = (low.min(node), high.max(node));
+            self.node[start + len] = node;
             self.n[start + len] = n;
             self.grad[start + len] = grad;
             len += 1;
@@ -146,7 +160,7 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
                     let offset: i64 = (0..D).map(|k| node[k] * grid.strides[k] as i64).sum();
                     push(corner as i64 + offset, n, grad);
                 }
-                self.len[i] = len as u8;
+                self.close(i, len, (low, high), grid.strides[D - 1]);
                 return;
             }
             SmoothKernel::UGimp => None,
@@ -187,7 +201,7 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
                 }
             }
         }
-        self.len[i] = len as u8;
+        self.close(i, len, (low, high), grid.strides[D - 1]);
     }
 }
 
