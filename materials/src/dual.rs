@@ -54,6 +54,31 @@ impl<const N: usize> Dual<N> {
         Dual::new(re, eps)
     }
 
+    /// Add the derivatives of x y to these, the value left as it is: an accumulation
+    /// whose values are known elsewhere (the derivative pass's node sums). The same
+    /// operations as `self + x * y` on the derivatives.
+    #[inline]
+    pub fn add_derivatives_of_product(&mut self, x: &Dual<N>, y: &Dual<N>) {
+        let product = combined(&x.eps, y.re, &y.eps, x.re);
+        self.eps = zip(&self.eps, &product, |s, p| s + p, |s, p| s + p);
+    }
+
+    /// Subtract the derivatives of x y from these, the value left as it is (as
+    /// `self - x * y` on the derivatives).
+    #[inline]
+    pub fn sub_derivatives_of_product(&mut self, x: &Dual<N>, y: &Dual<N>) {
+        let product = combined(&x.eps, y.re, &y.eps, x.re);
+        self.eps = zip(&self.eps, &product, |s, p| s - p, |s, p| s - p);
+    }
+
+    /// Add the derivatives of x a, a real, to these, the value left as it is (as
+    /// `self + x * a` on the derivatives).
+    #[inline]
+    pub fn add_derivatives_scaled(&mut self, x: &Dual<N>, a: f64) {
+        let product = scaled(&x.eps, a);
+        self.eps = zip(&self.eps, &product, |s, p| s + p, |s, p| s + p);
+    }
+
     /// f(x) from f(re) = `f0` and f'(re) = `f1`.
     #[inline]
     fn chain_rule(&self, f0: f64, f1: f64) -> Self {
@@ -672,6 +697,52 @@ mod tests {
         every_rule::<4>();
         every_rule::<6>();
         every_rule::<9>();
+    }
+
+    /// The accumulations of derivatives change the derivatives as the whole operation
+    /// would, to the bit, and leave the value.
+    #[test]
+    fn accumulated_derivatives_are_those_of_the_whole_operation() {
+        accumulated::<4>();
+        accumulated::<6>();
+    }
+
+    fn accumulated<const N: usize>() {
+        let (sum, _) = pair::<N>(0.4, 0.9);
+        let (x, _) = pair::<N>(-1.7, 1.3);
+        let (y, _) = pair::<N>(0.6, -0.7);
+        let cases: [(Dual<N>, Dual<N>, &str); 3] = [
+            (
+                sum + x * y,
+                with(sum, |s| s.add_derivatives_of_product(&x, &y)),
+                "sum of products",
+            ),
+            (
+                sum - x * y,
+                with(sum, |s| s.sub_derivatives_of_product(&x, &y)),
+                "difference",
+            ),
+            (
+                sum + x * 2.5,
+                with(sum, |s| s.add_derivatives_scaled(&x, 2.5)),
+                "scaled",
+            ),
+        ];
+        for (whole, accumulated, what) in cases {
+            assert_eq!(accumulated.re, sum.re, "{what}: the value is left");
+            for k in 0..N {
+                assert_eq!(
+                    accumulated.eps[k].to_bits(),
+                    whole.eps[k].to_bits(),
+                    "{what}: {k}"
+                );
+            }
+        }
+    }
+
+    fn with<const N: usize>(mut x: Dual<N>, change: impl Fn(&mut Dual<N>)) -> Dual<N> {
+        change(&mut x);
+        x
     }
 
     fn every_rule<const N: usize>() {

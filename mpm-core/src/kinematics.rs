@@ -11,7 +11,7 @@
 //!   & Schreyer 1996); a point of cross-section A at radius r is the ring 2π r A (Pappus).
 //! - `Solid` (D = 3): full 3D.
 
-use materials::scalar::{c, Scalar};
+use materials::scalar::Scalar;
 use materials::tensor::mul;
 use nalgebra::{Matrix3, SMatrix, SVector};
 use std::f64::consts::PI;
@@ -44,13 +44,12 @@ impl Kinematics {
         f: &Matrix3<T>,
         dt: f64,
     ) -> (Matrix3<T>, Matrix3<T>) {
-        let dt = c::<T>(dt);
         let mut l3 = Matrix3::zeros();
         l3.fixed_view_mut::<D, D>(0, 0).copy_from(l);
-        let mut f_new = mul(&(Matrix3::identity() + l3 * dt), f);
+        let mut f_new = mul(&(Matrix3::identity() + l3.map(|l| l * dt)), f);
         if self == Kinematics::Axisymmetric {
             l3[(2, 2)] = vg[0] / x[0];
-            f_new[(2, 2)] = (x[0] + vg[0] * dt) / c::<T>(x_ref[0]);
+            f_new[(2, 2)] = (x[0] + vg[0] * dt) / x_ref[0];
         }
         (l3, f_new)
     }

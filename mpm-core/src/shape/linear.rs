@@ -7,7 +7,7 @@
 //! which differs from the right-hand order of figure E.3 only in labelling.
 
 use super::{corners, Kernel, Point, Weights};
-use materials::scalar::{c, Scalar};
+use materials::scalar::Scalar;
 use nalgebra::SVector;
 
 /// Shape function values and gradients [1/m] at one point for the 2^D corners of its cell
@@ -37,10 +37,13 @@ pub fn linear<T: Scalar, const D: usize>(
         for i in 0..D {
             let upper = (k >> i) & 1 == 1;
             let a = if upper { xi[i] } else { T::one() - xi[i] };
-            let da: T = c(if upper { inv_h[i] } else { -inv_h[i] });
+            let da = if upper { inv_h[i] } else { -inv_h[i] };
             n *= a;
             for j in 0..D {
-                g[j] *= if i == j { da } else { a };
+                match i == j {
+                    true => g[j] *= da,
+                    false => g[j] *= a,
+                }
             }
         }
         w.n[k] = n;

@@ -142,18 +142,19 @@ impl<'a> Deformation<'a> {
     }
 
     /// σ − q I: the material stress `sigma` with the bulk viscosity's pressure (module
-    /// `viscosity`) at rate of deformation `d` and det F `det`, in any scalar.
+    /// `viscosity`) at volumetric rate of deformation `trace_d` = tr D = tr L and det F
+    /// `det`, in any scalar.
     #[inline]
     pub(super) fn with_viscosity<T: Scalar>(
         &self,
         sigma: Matrix3<T>,
-        d: &Matrix3<T>,
+        trace_d: T,
         det: T,
     ) -> Matrix3<T> {
         match self.viscosity {
             Some(q) => {
                 let rho = materials::scalar::c::<T>(self.rho0) / det;
-                sigma - Matrix3::identity() * q.pressure(rho, self.wave_speed, self.cell, d.trace())
+                sigma - Matrix3::identity() * q.pressure(rho, self.wave_speed, self.cell, trace_d)
             }
             None => sigma,
         }
@@ -213,7 +214,7 @@ impl<'a> Deformation<'a> {
             };
             let vol_new = k.det * p.v0[j];
             let d = (k.l3 + k.l3.transpose()) * 0.5;
-            let sigma_new = self.with_viscosity(*sigma, &d, k.det);
+            let sigma_new = self.with_viscosity(*sigma, d.trace(), k.det);
             p.work[j] = 0.5 * (p.sigma[j] * p.volume[j] + sigma_new * vol_new).dot(&d) * self.dt;
             p.f[j] = f_new[j];
             p.volume[j] = vol_new;

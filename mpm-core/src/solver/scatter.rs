@@ -115,16 +115,13 @@ impl<const D: usize> Sources<'_, D> {
         let p = self.p;
         let w = self.weights.stencil(i);
         let m = p.mass[i];
-        let share = match t.force {
-            true => PointShare::new(
-                m,
-                &p.velocity[i],
-                self.force[i] + self.body_force * m,
-                (&p.stress[i], p.volume[i], &p.position[i]),
-                self.kinematics,
-            ),
-            false => PointShare::without_forces(m, &p.velocity[i]),
-        };
+        let share = PointShare::new(
+            m,
+            &p.velocity[i],
+            self.force[i] + self.body_force * m,
+            (&p.stress[i], p.volume[i], &p.position[i]),
+            self.kinematics,
+        );
         for (c, &index) in w.node.iter().enumerate() {
             share.add_to(&mut nodes[index as usize - start], t, w.n[c], &w.grad[c]);
         }
@@ -135,11 +132,11 @@ impl<const D: usize> Sources<'_, D> {
 /// m v, external force f_ext + m b, σ V (in-plane block) and hoop force density
 /// σ_θθ V / r; in any scalar (dual in the derivative pass, `tangent`).
 pub(super) struct PointShare<const D: usize, T> {
-    mass: f64,
-    momentum: SVector<T, D>,
-    external: SVector<T, D>,
-    stress_volume: SMatrix<T, D, D>,
-    hoop: T,
+    pub(super) mass: f64,
+    pub(super) momentum: SVector<T, D>,
+    pub(super) external: SVector<T, D>,
+    pub(super) stress_volume: SMatrix<T, D, D>,
+    pub(super) hoop: T,
 }
 
 impl<const D: usize, T: Scalar> PointShare<D, T> {

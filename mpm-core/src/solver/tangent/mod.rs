@@ -38,6 +38,7 @@
 //! other point conditions.
 
 mod contact;
+mod node_sums;
 mod stencil;
 
 use super::gather::{earlier, interpolate, Deformation, Failure};
@@ -378,7 +379,8 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                         };
                         let (node, n, grad) = self.stencils.of(i);
                         for k in 0..node.len() {
-                            share.add_to(&mut nodes[node[k] as usize - start], t, n[k], &grad[k]);
+                            let node_k = &mut nodes[node[k] as usize - start];
+                            share.add_derivatives_to(node_k, t, &n[k], &grad[k]);
                         }
                     }
                 },
@@ -457,7 +459,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             stencils,
             ..
         } = self;
-        let dt = c::<Dual<P>>(s.dt);
+        let dt = s.dt;
         let points = (
             velocity.par_iter_mut(),
             grid_velocity.par_iter_mut(),
@@ -474,10 +476,10 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                     let x = join_all(&s.particles.position[i], &position[i]);
                     let (v_grid, a, l) = interpolate(nodes, stencils.of(i));
                     if motion {
-                        *v = join_all(&s.particles.velocity[i], v) + a * dt;
+                        *v = join_all(&s.particles.velocity[i], v) + a.map(|a| a * dt);
                         let beta = s.settings.pic_fraction;
                         if beta > 0.0 {
-                            *v = *v * c::<Dual<P>>(1.0 - beta) + v_grid * c::<Dual<P>>(beta);
+                            *v = v.map(|v| v * (1.0 - beta)) + v_grid.map(|v| v * beta);
                         }
                         *vg = v_grid;
                     }
@@ -508,9 +510,8 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                         return Some((i, Box::new(Cause::NonFinite { what })));
                     }
                     let j = det(&f_new);
-                    let d = (l3 + l3.transpose()) * c::<Dual<P>>(0.5);
-                    *sigma = updates[b].with_viscosity(sigma_new, &d, j);
-                    *vol = j * c::<Dual<P>>(s.particles.volume0[i]);
+                    *sigma = updates[b].with_viscosity(sigma_new, l3.trace(), j);
+                    *vol = j * s.particles.volume0[i];
                     *f = f_new;
                     *st = state_new;
                     None
