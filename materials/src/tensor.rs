@@ -121,12 +121,17 @@ pub fn dev<D: Scalar>(a: &M3<D>) -> M3<D> {
     a - identity::<D>() * (trace(a) / c::<D>(3.0))
 }
 
-/// Double contraction `a : b`.
+/// Double contraction `a : b`, summed in storage order over the nine entries (an indexed
+/// sum the compiler unrolls wherever it is inlined; a matrix iterator it sometimes leaves
+/// as a loop).
+#[inline]
 pub fn ddot<D: Scalar>(a: &M3<D>, b: &M3<D>) -> D {
-    a.component_mul(b).iter().fold(c::<D>(0.0), |s, &x| s + x)
+    let (a, b) = (a.as_slice(), b.as_slice());
+    (0..9).fold(c::<D>(0.0), |s, k| s + a[k] * b[k])
 }
 
 /// Frobenius norm `‖a‖ = √(a : a)`.
+#[inline]
 pub fn norm<D: Scalar>(a: &M3<D>) -> D {
     ddot(a, a).sqrt()
 }

@@ -135,24 +135,31 @@ impl<'a, L: Lane> Problem<'a, L> {
     }
 }
 
-/// K = ∂r/∂y of one point's local problem at `y`, from the hand-derived blocks of
-/// `Problem::eval` (the implicit step of `return_principal_dual`).
-pub(super) fn local_jacobian(
+/// K⁻¹, the inverse of K = ∂r/∂y of one point's local problem at `y` (the hand-derived
+/// blocks of `Problem::eval`), by blocks: with S = e − dᵀA⁻¹c, w = A⁻¹c and zᵀ = dᵀA⁻¹,
+/// K⁻¹ = [[A⁻¹ + w zᵀ/S, −w/S], [−zᵀ/S, 1/S]]. `None` where A or S is singular. For the
+/// implicit step of `return_principal_dual`.
+pub(super) fn local_jacobian_inverse(
     m: &ElastoPlastic<f64>,
     eps_trial: Vector3<f64>,
     onset: &Onset,
     dt: f64,
     y: &SVector<f64, 4>,
-) -> Matrix4<f64> {
+) -> Option<Matrix4<f64>> {
     let (_, k) = Problem::new(m, eps_trial, onset, dt).eval(y);
-    let mut jacobian = Matrix4::zeros();
-    jacobian.fixed_view_mut::<3, 3>(0, 0).copy_from(&k.a);
-    jacobian.fixed_view_mut::<3, 1>(0, 3).copy_from(&k.c);
-    jacobian
-        .fixed_view_mut::<1, 3>(3, 0)
-        .copy_from(&k.d.transpose());
-    jacobian[(3, 3)] = k.e;
-    jacobian
+    let a_inv = inverse(&k.a)?;
+    let (w, z) = (a_inv * k.c, a_inv.tr_mul(&k.d));
+    let s_inv = 1.0 / (k.e - k.d.dot(&w));
+    if !s_inv.is_finite() {
+        return None;
+    }
+    let mut k_inv = Matrix4::zeros();
+    let top_left = a_inv + w * z.transpose() * s_inv;
+    k_inv.fixed_view_mut::<3, 3>(0, 0).copy_from(&top_left);
+    k_inv.fixed_view_mut::<3, 1>(0, 3).copy_from(&(w * -s_inv));
+    (k_inv.fixed_view_mut::<1, 3>(3, 0)).copy_from(&(z.transpose() * -s_inv));
+    k_inv[(3, 3)] = s_inv;
+    Some(k_inv)
 }
 
 /// A converged return: Fp⁻¹, α and the Kirchhoff stress τ [Pa] at θ_n.
@@ -475,6 +482,9 @@ mod tests {
             ym[j] -= h;
             (p.eval(&yp).0[i] - p.eval(&ym).0[i]) / (2.0 * h)
         });
+        let k_inv = local_jacobian_inverse(&m, p.eps_trial, &onset, 1e-5, &y).unwrap();
+        let identity = fd * k_inv - SMatrix::<f64, 4, 4>::identity();
+        assert!(identity.norm() < 1e-6, "J_fd K⁻¹ − I: {identity}");
         for rhs in [
             SVector::<f64, 4>::new(1.0, 0.0, 0.0, 0.0),
             SVector::<f64, 4>::new(0.0, 0.0, 0.0, 1.0),

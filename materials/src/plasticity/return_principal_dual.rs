@@ -96,8 +96,7 @@ pub fn implicit_step<D: Scalar>(
         .flow
         .onset(old_re.alpha, old_re.theta, m_re.thermal.theta0);
     let eps_trial_re = trial.eps.map(|e| e.re());
-    let k_inv = return_principal::local_jacobian(&m_re, eps_trial_re, &onset, dt, &y_real)
-        .try_inverse()
+    let k_inv = return_principal::local_jacobian_inverse(&m_re, eps_trial_re, &onset, dt, &y_real)
         .ok_or(MaterialError::Singular {
             what: "principal return (implicit step)",
         })?;
