@@ -1,7 +1,7 @@
 //! A model chosen at run time (from a parameter file), still generic over the scalar.
 
 use crate::error::MaterialError;
-use crate::material::{Deliver, Model, State};
+use crate::material::{Converged, Deliver, Keep, Model, State};
 use crate::neo_hooke::NeoHooke;
 use crate::plasticity::ElastoPlastic;
 use crate::scalar::Scalar;
@@ -59,11 +59,21 @@ impl<D: Scalar> Model<D> for AnyModel<D> {
         f: &M3<D>,
         dt: f64,
         old: &State<D>,
-        real: &State<f64>,
+        real: (&State<f64>, Option<&Converged>),
     ) -> Result<(M3<D>, State<D>), MaterialError> {
         each!(self, m => m.update_from_real(f, dt, old, real))
     }
     fn update_batch(&self, f: &[M3<D>], dt: f64, old: &[State<D>], deliver: &mut Deliver<D>) {
         each!(self, m => m.update_batch(f, dt, old, deliver))
+    }
+    fn update_batch_keeping(
+        &self,
+        f: &[M3<D>],
+        dt: f64,
+        old: &[State<D>],
+        deliver: &mut Deliver<D>,
+        keep: &mut Keep,
+    ) {
+        each!(self, m => m.update_batch_keeping(f, dt, old, deliver, keep))
     }
 }

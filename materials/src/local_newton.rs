@@ -65,6 +65,15 @@ pub fn solve<const N: usize, J: Jacobian<f64, N>>(
     }
 }
 
+/// A converged local problem kept for its derivative: the root y* and K⁻¹, the inverse of
+/// the Jacobian there, from which dy = −K⁻¹ dr (the implicit function theorem) follows for
+/// any derivative dr of the residual at fixed y.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Converged<const N: usize> {
+    pub y: SVector<f64, N>,
+    pub k_inv: SMatrix<f64, N, N>,
+}
+
 /// The roots of a batch, and the failure of each lane that has none.
 pub struct Roots<L: Lane, const N: usize> {
     pub x: SVector<L, N>,

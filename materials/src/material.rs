@@ -4,6 +4,7 @@
 //! The old state is never mutated, so a failed update leaves the history untouched.
 
 use crate::error::MaterialError;
+use crate::local_newton::Converged as Root;
 use crate::scalar::{c, Scalar};
 use crate::tensor::{identity, M3};
 use nalgebra::Matrix3;
@@ -50,6 +51,13 @@ impl<D: Scalar> State<D> {
 /// Receives the update of point i of a batch: (σ, new state) or its failure.
 pub type Deliver<'a, D = f64> = dyn FnMut(usize, Result<(M3<D>, State<D>), MaterialError>) + 'a;
 
+/// Takes `(i, converged)` for point i of a batch whose update solved a local problem: what
+/// `Model::update_from_real` differentiates without forming it again (a derivative pass).
+pub type Keep<'a> = dyn FnMut(usize, &Converged) + 'a;
+
+/// A converged local problem of a model's update (the principal return's four unknowns).
+pub type Converged = Root<4>;
+
 /// A batch update point by point with `update`.
 pub fn one_by_one<D: Scalar>(
     update: impl Fn(&M3<D>, &State<D>) -> Result<(M3<D>, State<D>), MaterialError>,
@@ -95,8 +103,9 @@ pub trait Model<D: Scalar>: Clone + Send + Sync {
     ) -> Result<(M3<D>, State<D>), MaterialError>;
 
     /// `update` given the new state `real` that the same update gave in real arithmetic
-    /// for the real parts of `f` and `old` (the run's own update, in a derivative pass): a
-    /// model that solves a local problem takes the solution from there and only
+    /// for the real parts of `f` and `old` (the run's own update, in a derivative pass),
+    /// and the local problem it `converged` to where it kept it (`update_batch_keeping`):
+    /// a model that solves a local problem takes the solution from there and only
     /// differentiates it. The same result as `update` to round-off; the default is
     /// `update`. A model that wraps another forwards it.
     fn update_from_real(
@@ -104,9 +113,9 @@ pub trait Model<D: Scalar>: Clone + Send + Sync {
         f: &M3<D>,
         dt: f64,
         old: &State<D>,
-        real: &State<f64>,
+        (real, converged): (&State<f64>, Option<&Converged>),
     ) -> Result<(M3<D>, State<D>), MaterialError> {
-        let _ = real;
+        let _ = (real, converged);
         self.update(f, dt, old)
     }
 
@@ -117,6 +126,20 @@ pub trait Model<D: Scalar>: Clone + Send + Sync {
     /// preheated SHPB specimen ran 9 % slower before it did).
     fn update_batch(&self, f: &[M3<D>], dt: f64, old: &[State<D>], deliver: &mut Deliver<D>) {
         one_by_one(|f, old| self.update(f, dt, old), f, old, deliver);
+    }
+
+    /// `update_batch`, handing `keep` the converged local problem of each point whose
+    /// update solved one. The default keeps none; a model that wraps another forwards it.
+    fn update_batch_keeping(
+        &self,
+        f: &[M3<D>],
+        dt: f64,
+        old: &[State<D>],
+        deliver: &mut Deliver<D>,
+        keep: &mut Keep,
+    ) {
+        let _ = keep;
+        self.update_batch(f, dt, old, deliver)
     }
 }
 
@@ -143,6 +166,18 @@ pub trait Material: Send + Sync {
         deliver: &mut Deliver<'_>,
     ) {
         one_by_one(|f, old| self.update(f, dt, old), f, old, deliver);
+    }
+    /// `Model::update_batch_keeping`.
+    fn update_batch_keeping(
+        &self,
+        f: &[Matrix3<f64>],
+        dt: f64,
+        old: &[State<f64>],
+        deliver: &mut Deliver<'_>,
+        keep: &mut Keep,
+    ) {
+        let _ = keep;
+        self.update_batch(f, dt, old, deliver)
     }
 }
 
@@ -178,5 +213,15 @@ impl<T: Model<f64>> Material for T {
         deliver: &mut Deliver<'_>,
     ) {
         Model::update_batch(self, f, dt, old, deliver)
+    }
+    fn update_batch_keeping(
+        &self,
+        f: &[Matrix3<f64>],
+        dt: f64,
+        old: &[State<f64>],
+        deliver: &mut Deliver<'_>,
+        keep: &mut Keep,
+    ) {
+        Model::update_batch_keeping(self, f, dt, old, deliver, keep)
     }
 }

@@ -7,7 +7,7 @@
 use crate::ad::seed_named;
 pub use crate::dual::Dual;
 use crate::error::MaterialError;
-use crate::material::{Model, State};
+use crate::material::{Converged, Model, State};
 use crate::tensor::M3;
 
 /// A model whose free parameters carry unit dual parts, one direction each: an update in
@@ -17,13 +17,14 @@ use crate::tensor::M3;
 /// one pass.
 pub trait SeededModel<const P: usize>: Send + Sync {
     /// `Model::update_from_real` in dual arithmetic: `real` is the new state the run's
-    /// own update gave for the real parts of `f` and `old`.
+    /// own update gave for the real parts of `f` and `old`, with the local problem it
+    /// converged to where the run kept it (`Model::update_batch_keeping`).
     fn update(
         &self,
         f: &M3<Dual<P>>,
         dt: f64,
         old: &State<Dual<P>>,
-        real: &State<f64>,
+        real: (&State<f64>, Option<&Converged>),
     ) -> Result<(M3<Dual<P>>, State<Dual<P>>), MaterialError>;
     /// The initial state with its derivatives (nonzero when e.g. θ0 is free).
     fn initial_state(&self) -> State<Dual<P>>;
@@ -39,7 +40,7 @@ impl<const P: usize, M: Model<Dual<P>>> SeededModel<P> for M {
         f: &M3<Dual<P>>,
         dt: f64,
         old: &State<Dual<P>>,
-        real: &State<f64>,
+        real: (&State<f64>, Option<&Converged>),
     ) -> Result<(M3<Dual<P>>, State<Dual<P>>), MaterialError> {
         Model::update_from_real(self, f, dt, old, real)
     }

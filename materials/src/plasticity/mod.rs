@@ -27,7 +27,7 @@ use crate::elastic::Elastic;
 use crate::error::MaterialError;
 use crate::flow_stress::{FlowStress, Onset, MOLTEN_THERMAL_FACTOR};
 use crate::lanes::{pack, F64x4, MAX_LANES};
-use crate::material::{one_by_one, Deliver, Model, State};
+use crate::material::{one_by_one, Converged, Deliver, Keep, Model, State};
 use crate::parameter_set;
 use crate::scalar::{c, Scalar};
 use crate::tensor::{all_finite, det, lift, mul, re, von_mises, M3};
@@ -162,6 +162,7 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
                     dalpha,
                     tau: None,
                     molten: false,
+                    converged: None,
                 }
             }
             ReturnMap::Principal => {
@@ -179,7 +180,7 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
         f: &M3<D>,
         dt: f64,
         old: &State<D>,
-        real: &State<f64>,
+        (real, converged): (&State<f64>, Option<&Converged>),
     ) -> Result<(M3<D>, State<D>), MaterialError> {
         let theta = old.theta.re();
         let flow = self.flow.map(|_, v| v.re());
@@ -198,6 +199,7 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
             dalpha: real.dalpha,
             tau: None,
             molten,
+            converged: converged.copied(),
         };
         self.after_return(f, dt, old, real)
     }
@@ -206,6 +208,33 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
     /// (`FlowStress::onset` in lanes, `return_principal::solve_batch`); one at a time for
     /// dual scalars and the reference return.
     fn update_batch(&self, f: &[M3<D>], dt: f64, old: &[State<D>], deliver: &mut Deliver<D>) {
+        self.batch(f, dt, old, deliver, None)
+    }
+
+    /// `update_batch`, keeping each principal return's y* and K⁻¹ (`solve_batch`).
+    fn update_batch_keeping(
+        &self,
+        f: &[M3<D>],
+        dt: f64,
+        old: &[State<D>],
+        deliver: &mut Deliver<D>,
+        keep: &mut Keep,
+    ) {
+        self.batch(f, dt, old, deliver, Some(keep))
+    }
+}
+
+impl<D: Scalar> ElastoPlastic<D> {
+    /// `update_batch`, with `keep` as in `update_batch_keeping`.
+    #[inline(always)]
+    fn batch(
+        &self,
+        f: &[M3<D>],
+        dt: f64,
+        old: &[State<D>],
+        deliver: &mut Deliver<D>,
+        mut keep: Option<&mut Keep>,
+    ) {
         if D::NDERIV > 0 || self.return_map == ReturnMap::Reference {
             return one_by_one(|f, old| self.update(f, dt, old), f, old, deliver);
         }
@@ -233,14 +262,16 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
                     Trial::Yields { onset, .. } => {
                         group.push(i, re(f_i), old_i.re(), onset);
                         if group.len == MAX_LANES {
-                            self.return_group(&model, &mut group, f, dt, old, deliver);
+                            let keep = keep.as_deref_mut();
+                            self.return_group(&model, &mut group, (f, dt, old), deliver, keep);
                         }
                     }
                 }
             }
         }
         if group.len > 0 {
-            self.return_group(&model, &mut group, f, dt, old, deliver);
+            let keep = keep.as_deref_mut();
+            self.return_group(&model, &mut group, (f, dt, old), deliver, keep);
         }
     }
 }
@@ -273,6 +304,8 @@ struct RealReturn {
     tau: Option<M3<f64>>,
     /// At or above melting: no flow stress, the closed-form return.
     molten: bool,
+    /// y* and K⁻¹ of the return as the run solved it, where it kept them.
+    converged: Option<Converged>,
 }
 
 impl From<return_principal::Returned> for RealReturn {
@@ -283,6 +316,7 @@ impl From<return_principal::Returned> for RealReturn {
             dalpha: r.dalpha,
             tau: Some(r.tau),
             molten: false,
+            converged: None,
         }
     }
 }
@@ -393,7 +427,8 @@ impl<D: Scalar> ElastoPlastic<D> {
             let Flowed { fp_inv, tau, alpha } = match (real.molten, self.return_map) {
                 (true, _) => return_principal_dual::molten_step(self, f, old)?,
                 (false, ReturnMap::Principal) => {
-                    return_principal_dual::implicit_step(self, f, old, dt, fp_inv, dalpha)?
+                    let real = (fp_inv, dalpha, real.converged.as_ref());
+                    return_principal_dual::implicit_step(self, f, old, dt, real)?
                 }
                 (false, ReturnMap::Reference) => {
                     let (fp_inv, alpha) =
@@ -435,17 +470,25 @@ impl<D: Scalar> ElastoPlastic<D> {
         &self,
         model: &ElastoPlastic<f64>,
         group: &mut YieldingGroup,
-        f: &[M3<D>],
-        dt: f64,
-        old: &[State<D>],
+        (f, dt, old): (&[M3<D>], f64, &[State<D>]),
         deliver: &mut Deliver<D>,
+        keep: Option<&mut Keep>,
     ) {
         let points = &group.points[..group.len];
-        return_principal::solve_batch(model, points, dt, &mut |k, returned| {
-            let i = group.index[k];
-            let result = returned.and_then(|r| self.after_return(&f[i], dt, &old[i], r.into()));
-            deliver(i, result);
-        });
+        let index = group.index;
+        let mut keep = keep.map(|keep| move |k: usize, c: &Converged| keep(index[k], c));
+        let keep = keep.as_mut().map(|k| k as &mut Keep);
+        return_principal::solve_batch(
+            model,
+            points,
+            dt,
+            &mut |k, returned| {
+                let i = index[k];
+                let result = returned.and_then(|r| self.after_return(&f[i], dt, &old[i], r.into()));
+                deliver(i, result);
+            },
+            keep,
+        );
         group.len = 0;
     }
 }

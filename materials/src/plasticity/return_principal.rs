@@ -18,9 +18,11 @@
 
 use crate::error::MaterialError;
 use crate::flow_stress::{LogIncrementPath, Onset};
-use crate::lanes::{none, pack, regular, select, select_matrix, F64x4, Lane, Mask, MAX_LANES};
+use crate::lanes::{
+    lane, none, pack, regular, select, select_matrix, F64x4, Lane, Mask, MAX_LANES,
+};
 use crate::local_newton::{self, Jacobian, Roots};
-use crate::material::State;
+use crate::material::{Converged, Keep, State};
 use crate::near_one::{exp_small, ln_near_one};
 use crate::plasticity::ElastoPlastic;
 use crate::sym_eigen::{self, SymEigen};
@@ -57,6 +59,25 @@ struct Bordered<L> {
     c: Vector3<L>,
     d: Vector3<L>,
     e: L,
+}
+
+impl<L: Lane> Bordered<L> {
+    /// K⁻¹ by blocks: with w = A⁻¹c, zᵀ = dᵀA⁻¹ and S = e − dᵀw,
+    /// K⁻¹ = [[A⁻¹ + w zᵀ/S, −w/S], [−zᵀ/S, 1/S]], and the lanes where A and S are regular.
+    fn inverse(&self) -> (Matrix4<L>, Mask<L>) {
+        let (a_inv, a_regular) = inverse_lanes(&self.a);
+        let w = a_inv * self.c;
+        let z = a_inv.transpose() * self.d;
+        let schur = self.e - self.d.dot(&w);
+        let s_inv = L::splat(1.0) / schur;
+        let k_inv = Matrix4::from_fn(|i, j| match (i < 3, j < 3) {
+            (true, true) => a_inv[(i, j)] + w[i] * z[j] * s_inv,
+            (true, false) => -(w[i] * s_inv),
+            (false, true) => -(z[j] * s_inv),
+            (false, false) => s_inv,
+        });
+        (k_inv, a_regular & regular(schur))
+    }
 }
 
 impl<L: Lane> Jacobian<L, 4> for Bordered<L> {
@@ -136,9 +157,9 @@ impl<'a, L: Lane> Problem<'a, L> {
 }
 
 /// K⁻¹, the inverse of K = ∂r/∂y of one point's local problem at `y` (the hand-derived
-/// blocks of `Problem::eval`), by blocks: with S = e − dᵀA⁻¹c, w = A⁻¹c and zᵀ = dᵀA⁻¹,
-/// K⁻¹ = [[A⁻¹ + w zᵀ/S, −w/S], [−zᵀ/S, 1/S]]. `None` where A or S is singular. For the
-/// implicit step of `return_principal_dual`.
+/// blocks of `Problem::eval`, `Bordered::inverse`); `None` where A or the Schur complement
+/// is singular. For the implicit step of `return_principal_dual` where the run kept no
+/// `Converged`.
 pub(super) fn local_jacobian_inverse(
     m: &ElastoPlastic<f64>,
     eps_trial: Vector3<f64>,
@@ -147,19 +168,8 @@ pub(super) fn local_jacobian_inverse(
     y: &SVector<f64, 4>,
 ) -> Option<Matrix4<f64>> {
     let (_, k) = Problem::new(m, eps_trial, onset, dt).eval(y);
-    let a_inv = inverse(&k.a)?;
-    let (w, z) = (a_inv * k.c, a_inv.tr_mul(&k.d));
-    let s_inv = 1.0 / (k.e - k.d.dot(&w));
-    if !s_inv.is_finite() {
-        return None;
-    }
-    let mut k_inv = Matrix4::zeros();
-    let top_left = a_inv + w * z.transpose() * s_inv;
-    k_inv.fixed_view_mut::<3, 3>(0, 0).copy_from(&top_left);
-    k_inv.fixed_view_mut::<3, 1>(0, 3).copy_from(&(w * -s_inv));
-    (k_inv.fixed_view_mut::<1, 3>(3, 0)).copy_from(&(z.transpose() * -s_inv));
-    k_inv[(3, 3)] = s_inv;
-    Some(k_inv)
+    let (k_inv, regular) = k.inverse();
+    regular.then_some(k_inv)
 }
 
 /// A converged return: Fp⁻¹, α and the Kirchhoff stress τ [Pa] at θ_n.
@@ -236,12 +246,14 @@ pub fn molten(
 
 /// `solve` for many points of one material and Δt, four at a time in lockstep; `deliver`
 /// takes each point's index in `points` and its return. Each return equals `solve`'s to
-/// the bit.
+/// the bit. With `keep`, also each converged point's y* and K⁻¹ there (one more
+/// evaluation of the Jacobian, in lanes), which `return_principal_dual` then takes.
 pub fn solve_batch(
     m: &ElastoPlastic<f64>,
     points: &[Yielding],
     dt: f64,
     deliver: &mut dyn FnMut(usize, Result<Returned, MaterialError>),
+    mut keep: Option<&mut Keep>,
 ) {
     for (g, group) in points.chunks(MAX_LANES).enumerate() {
         let n = group.len();
@@ -257,6 +269,11 @@ pub fn solve_batch(
         let onset = Onset::pack(|i| point(i).onset);
         let previous = pack(|i| point(i).old.dalpha);
         let solved = solve_local(m, &b_trial, &onset, previous, dt);
+        if let Some(keep) = keep.as_mut() {
+            keep_converged(m, &solved, (&onset, dt), n, &mut |i, c| {
+                keep(g * MAX_LANES + i, c)
+            });
+        }
         for (i, p) in group.iter().enumerate() {
             let returned = match &solved.failures.as_ref()[i] {
                 Some(error) => Err(error.clone()),
@@ -267,9 +284,33 @@ pub fn solve_batch(
     }
 }
 
+/// Hand `keep` y* and K⁻¹ of each of the first `n` lanes of `solved` that converged with
+/// a regular Jacobian.
+fn keep_converged<L: Lane>(
+    m: &ElastoPlastic<f64>,
+    solved: &SolvedLanes<L>,
+    (onset, dt): (&Onset<L>, f64),
+    n: usize,
+    keep: &mut Keep,
+) {
+    let (_, k) = Problem::new(m, solved.eps_trial, onset, dt).eval(&solved.y);
+    let (k_inv, regular) = k.inverse();
+    for i in 0..n {
+        if solved.failures.as_ref()[i].is_none() && lane::<L>(regular, i) {
+            let converged = Converged {
+                y: solved.y.map(|y| y.extract(i)),
+                k_inv: k_inv.map(|k| k.extract(i)),
+            };
+            keep(i, &converged);
+        }
+    }
+}
+
 /// The solved local problems of a point per lane.
 struct SolvedLanes<L: Lane> {
     eps_trial: Vector3<L>,
+    /// The roots y* = (ε_1..3, ln Δα).
+    y: SVector<L, 4>,
     /// λ_a / λ_a^tr = exp(−√(3/2) Δα n_a)
     ratio: Vector3<L>,
     dalpha: L,
@@ -312,6 +353,7 @@ fn solve_local<L: Lane>(
     .map(exp_small);
     SolvedLanes {
         eps_trial,
+        y,
         ratio,
         dalpha: y[3].exp_v(),
         failures,

@@ -17,10 +17,12 @@ use crate::parallel;
 use crate::parallel::fixed_sum;
 use crate::viscosity::BulkViscosity;
 use crate::weights::WeightCache;
+use materials::material::Converged;
 use materials::Scalar;
 use materials::{Material, State};
 use nalgebra::{Matrix3, SMatrix, SVector};
 use rayon::prelude::*;
+use std::sync::Mutex;
 
 /// Σ N v_I, Σ N a_I and L = Σ v_I ⊗ ∇N_I at a point that reaches the nodes `node` with
 /// weights `n` and gradients `grad`, in any scalar (dual in the derivative pass,
@@ -184,12 +186,14 @@ impl<'a> Deformation<'a> {
         Ok(Kinematic { l3, det })
     }
 
-    /// σ and history of the piece's points from the material (all at once, `update_batch`),
-    /// then V = det F V0, bulk viscosity and the stress work ½ (σV + σ'V') : D Δt.
+    /// σ and history of the piece's points from the material (all at once, `update_batch`;
+    /// with `kept`, `update_batch_keeping` into the points' slots, by point index), then
+    /// V = det F V0, bulk viscosity and the stress work ½ (σV + σ'V') : D Δt.
     fn update<const D: usize>(
         &self,
         p: &mut Piece<'_, D>,
         (f_new, kinematic): (&[Matrix3<f64>], &[Option<Kinematic>]),
+        kept: Option<&Mutex<&mut [Option<Converged>]>>,
         failure: &mut Failure,
     ) {
         let mut updated = [None; parallel::MATERIAL_PIECE];
@@ -197,7 +201,13 @@ impl<'a> Deformation<'a> {
             Ok(new) => updated[j] = Some(new),
             Err(e) => earliest(failure, p.first + j, Cause::Material(e)),
         };
-        if kinematic.iter().all(Option::is_some) {
+        let first = p.first;
+        if let (true, Some(kept)) = (kinematic.iter().all(Option::is_some), kept) {
+            let mut keep = |j: usize, c: &Converged| {
+                kept.lock().expect("no keeper panics")[first + j] = Some(*c);
+            };
+            (self.material).update_batch_keeping(f_new, self.dt, p.state, &mut deliver, &mut keep);
+        } else if kinematic.iter().all(Option::is_some) {
             self.material
                 .update_batch(f_new, self.dt, p.state, &mut deliver);
         } else {
@@ -244,6 +254,11 @@ impl<const D: usize> Solver<D> {
         let grid = &self.grid;
         let p = &mut self.particles;
         let s = &mut self.scratch;
+        if s.keep_returns && deformation {
+            s.kept.clear();
+            s.kept.resize(p.len(), None);
+        }
+        let kept = (s.keep_returns && deformation).then(|| Mutex::new(&mut s.kept[..]));
         let weights = &s.weights;
         let piece = parallel::MATERIAL_PIECE;
         let mut first_failure: Option<(usize, Cause)> = None;
@@ -307,7 +322,7 @@ impl<const D: usize> Solver<D> {
                     }
                 }
                 let batch = (&f_new[..n], &kinematic[..n]);
-                update.update(&mut points, batch, &mut failure);
+                update.update(&mut points, batch, kept.as_ref(), &mut failure);
                 failure
             };
             let failure = parallel::fold(

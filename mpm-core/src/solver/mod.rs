@@ -43,6 +43,7 @@ use crate::shape::{Hex, ShapeFunction};
 use crate::shift::GridShift;
 use crate::watchdog::Watchdog;
 use crate::weights::WeightCache;
+use materials::material::Converged;
 use materials::signal::TimeSignal;
 use materials::Material;
 use nalgebra::SVector;
@@ -85,6 +86,12 @@ struct Scratch<const D: usize> {
     slabs: slabs::Slabs,
     /// Shape-function weights of every particle for this step.
     weights: WeightCache<D>,
+    /// Whether the stress update keeps each point's converged local problem (`kept`), for
+    /// a derivative pass that differentiates it (`Tangent`).
+    keep_returns: bool,
+    /// Each point's converged local problem of this step's stress update, `None` where it
+    /// solved none (with `keep_returns`; else empty).
+    kept: Vec<Option<Converged>>,
 }
 
 /// A model and its state. Cloning a solver before `initialize` is how a template makes

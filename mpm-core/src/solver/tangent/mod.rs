@@ -24,8 +24,9 @@
 //! and step (`Cause::NonFinite`), with the output up to there kept.
 //!
 //! Cost: one dual update per point and step (the return mapping by the implicit function
-//! theorem at the run's converged return, dy = −K⁻¹ dr) and the
-//! transfers in P + 1 lanes. Memory: (P + 1) numbers for each real one of the state; no tape.
+//! theorem at the run's converged return, dy = −K⁻¹ dr, with y* and K⁻¹ as the run's
+//! batched return kept them while a pass runs, `Solver::step_with`) and the transfers in
+//! P + 1 lanes. Memory: (P + 1) numbers for each real one of the state; no tape.
 //!
 //! Carried: linear, CPDI and cpGIMP weights (module `stencil`), penalty contact with
 //! rigid bodies of prescribed motion and with faces on elastic bars, whose displacement
@@ -501,10 +502,12 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                     );
                     let old = join_state(&state_before[i], st);
                     let real = &block.state[i - block.range.start];
-                    let (sigma_new, state_new) = match models[b].update(&f_new, s.dt, &old, real) {
-                        Ok(new) => new,
-                        Err(e) => return Some((i, Box::new(Cause::Material(e)))),
-                    };
+                    let kept = s.scratch.kept.get(i).and_then(Option::as_ref);
+                    let (sigma_new, state_new) =
+                        match models[b].update(&f_new, s.dt, &old, (real, kept)) {
+                            Ok(new) => new,
+                            Err(e) => return Some((i, Box::new(Cause::Material(e)))),
+                        };
                     if !finite_derivatives(&sigma_new, &state_new) {
                         let what = "derivative of the material update (σ or history)";
                         return Some((i, Box::new(Cause::NonFinite { what })));
@@ -537,11 +540,13 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
 }
 
 impl<const D: usize> Solver<D> {
-    /// `step`, carrying the derivatives of `tangent` along.
+    /// `step`, carrying the derivatives of `tangent` along; the stress update keeps its
+    /// returns for the pass to differentiate.
     pub fn step_with<const P: usize>(
         &mut self,
         tangent: &mut Tangent<D, P>,
     ) -> Result<(), SimulationError> {
+        self.scratch.keep_returns = true;
         for &stage in self.settings.scheme.stages() {
             tangent.before(stage, self)?;
             self.run_stage(stage)?;
