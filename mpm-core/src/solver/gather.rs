@@ -144,18 +144,19 @@ impl<'a> Deformation<'a> {
     }
 
     /// σ − q I: the material stress `sigma` with the bulk viscosity's pressure (module
-    /// `viscosity`) at volumetric rate of deformation `trace_d` = tr D = tr L and det F
-    /// `det`, in any scalar.
+    /// `viscosity`) at the volumetric rate of deformation tr D = tr L of the velocity
+    /// gradient `l3`, and det F `det`, in any scalar.
     #[inline]
     pub(super) fn with_viscosity<T: Scalar>(
         &self,
         sigma: Matrix3<T>,
-        trace_d: T,
+        l3: &Matrix3<T>,
         det: T,
     ) -> Matrix3<T> {
         match self.viscosity {
             Some(q) => {
                 let rho = materials::scalar::c::<T>(self.rho0) / det;
+                let trace_d = l3[(0, 0)] + l3[(1, 1)] + l3[(2, 2)];
                 sigma - Matrix3::identity() * q.pressure(rho, self.wave_speed, self.cell, trace_d)
             }
             None => sigma,
@@ -224,7 +225,7 @@ impl<'a> Deformation<'a> {
             };
             let vol_new = k.det * p.v0[j];
             let d = (k.l3 + k.l3.transpose()) * 0.5;
-            let sigma_new = self.with_viscosity(*sigma, d.trace(), k.det);
+            let sigma_new = self.with_viscosity(*sigma, &k.l3, k.det);
             p.work[j] = 0.5 * (p.sigma[j] * p.volume[j] + sigma_new * vol_new).dot(&d) * self.dt;
             p.f[j] = f_new[j];
             p.volume[j] = vol_new;

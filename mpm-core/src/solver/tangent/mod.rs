@@ -513,7 +513,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                         return Some((i, Box::new(Cause::NonFinite { what })));
                     }
                     let j = det(&f_new);
-                    *sigma = updates[b].with_viscosity(sigma_new, l3.trace(), j);
+                    *sigma = updates[b].with_viscosity(sigma_new, &l3, j);
                     *vol = j * s.particles.volume0[i];
                     *f = f_new;
                     *st = state_new;
