@@ -87,7 +87,8 @@ struct Scratch<const D: usize> {
     /// Shape-function weights of every particle for this step.
     weights: WeightCache<D>,
     /// Whether the stress update keeps each point's converged local problem (`kept`), for
-    /// a derivative pass that differentiates it (`Tangent`).
+    /// a derivative pass that differentiates it (`Tangent`): set by `step_with`, cleared by
+    /// `step`.
     keep_returns: bool,
     /// Each point's converged local problem of this step's stress update, `None` where it
     /// solved none (with `keep_returns`; else empty).
@@ -263,6 +264,7 @@ impl<const D: usize> Solver<D> {
 
     /// Advance one time step: the stages of the scheme in order.
     pub fn step(&mut self) -> Result<(), SimulationError> {
+        self.scratch.keep_returns = false;
         for &stage in self.settings.scheme.stages() {
             self.run_stage(stage)?;
         }
@@ -272,6 +274,7 @@ impl<const D: usize> Solver<D> {
     /// `step`, adding each stage's wall time to `times` (for benchmarks: where a step's
     /// time goes).
     pub fn step_timed(&mut self, times: &mut StageTimes) -> Result<(), SimulationError> {
+        self.scratch.keep_returns = false;
         let stages = self.settings.scheme.stages();
         if times.0.len() != stages.len() {
             times.0 = stages.iter().map(|&s| (s, Duration::ZERO)).collect();
