@@ -202,12 +202,16 @@ impl<'a> Deformation<'a> {
             Ok(new) => updated[j] = Some(new),
             Err(e) => earliest(failure, p.first + j, Cause::Material(e)),
         };
-        let first = p.first;
         if let (true, Some(kept)) = (kinematic.iter().all(Option::is_some), kept) {
-            let mut keep = |j: usize, c: &Converged| {
-                kept.lock().expect("no keeper panics")[first + j] = Some(*c);
-            };
+            // the piece's returns gathered here, then written under one lock
+            let mut returns = Vec::with_capacity(f_new.len());
+            let first = p.first;
+            let mut keep = |j: usize, c: &Converged| returns.push((first + j, *c));
             (self.material).update_batch_keeping(f_new, self.dt, p.state, &mut deliver, &mut keep);
+            let mut slots = kept.lock().expect("no keeper panics");
+            for (i, c) in returns {
+                slots[i] = Some(c);
+            }
         } else if kinematic.iter().all(Option::is_some) {
             self.material
                 .update_batch(f_new, self.dt, p.state, &mut deliver);
@@ -255,11 +259,11 @@ impl<const D: usize> Solver<D> {
         let grid = &self.grid;
         let p = &mut self.particles;
         let s = &mut self.scratch;
-        if s.keep_returns && deformation {
+        let kept = (s.keep_returns && deformation).then(|| {
             s.kept.clear();
             s.kept.resize(p.len(), None);
-        }
-        let kept = (s.keep_returns && deformation).then(|| Mutex::new(&mut s.kept[..]));
+            Mutex::new(&mut s.kept[..])
+        });
         let weights = &s.weights;
         let piece = parallel::MATERIAL_PIECE;
         let mut first_failure: Option<(usize, Cause)> = None;

@@ -18,6 +18,7 @@ pub mod shpb_model;
 
 use data::VerifyData;
 use row::Row;
+use std::time::Instant;
 
 /// What every part of the catalogue is given.
 pub struct Inputs<'a> {
@@ -46,11 +47,21 @@ pub const CATALOGUE: [(&str, Part); 11] = [
 ];
 
 /// Every row of the catalogue; a part that cannot run, or two rows of one name (two
-/// builds' tables are compared by name), is an error.
+/// builds' tables are compared by name), is an error. Each part, when done, says on
+/// stderr how many rows it gave and how long it took (the whole table takes minutes).
 pub fn table(inputs: &Inputs) -> anyhow::Result<Vec<Row>> {
     let mut rows: Vec<Row> = vec![];
-    for (name, _) in CATALOGUE {
-        rows.extend(part(inputs, name)?);
+    for (k, (name, _)) in CATALOGUE.iter().enumerate() {
+        let start = Instant::now();
+        let part_rows = part(inputs, name)?;
+        eprintln!(
+            "verify: part {}/{} `{name}`: {} rows in {:.1} s",
+            k + 1,
+            CATALOGUE.len(),
+            part_rows.len(),
+            start.elapsed().as_secs_f64()
+        );
+        rows.extend(part_rows);
     }
     unique(rows)
 }
