@@ -6,12 +6,14 @@
 
 use crate::charts::heatmap::HeatMap;
 use crate::charts::{LineChart, Series};
+use crate::cli::progress::ProgressLine;
 use crate::verify::data::VerifyData;
 use crate::verify::materials::{self as studies, figure_4_5, iso_error};
 use crate::verify::row::{Row, Verdict};
 use crate::verify::Inputs;
 use anyhow::{bail, Result};
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -70,8 +72,14 @@ fn table_through(
         batch.dir.display()
     );
     let stop = crate::cli::interrupt::interrupt_flag()?;
+    let (line, start) = (ProgressLine::default(), Instant::now());
+    let reports = executor.run(&batch, &stop, &|state| {
+        let text = format!("{state}, {:.0} s", start.elapsed().as_secs_f64());
+        line.show("verify", &text)
+    })?;
+    line.finish();
     let mut rows = Vec::new();
-    for report in executor.run(&batch, &stop, &|_| {})? {
+    for report in reports {
         report.result.map_err(|f| anyhow::anyhow!("{f}"))?;
         let file = batch.task(report.index).run().join(ROWS_FILE);
         let text = std::fs::read_to_string(&file)
