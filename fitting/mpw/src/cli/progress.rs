@@ -46,10 +46,13 @@ impl ProgressLine {
             }
         }
         if printed.elapsed() >= HEARTBEAT {
+            // printed now: not again when the group ends
             eprintln!("{text}");
             *printed = Instant::now();
+            *pending = None;
+        } else {
+            *pending = Some((key.to_string(), text.to_string()));
         }
-        *pending = Some((key.to_string(), text.to_string()));
     }
 
     /// End the line (terminal) or print the last group's line.

@@ -2,6 +2,9 @@
 //! elevated temperature) from a stated parameter set, noise level and seed; the truth is
 //! in every file header. The defaults write the shipped `data/experiments/` set again,
 //! into `out/synth` (the shipped files are only rewritten when `--out` names them).
+//! `--shpb-3d FILE` writes instead the data of `verify`'s MPM-level synthetic (F2 of the
+//! 3D quarter SHPB model with its truth, minutes); `data/experiments/mpm_synthetic_f2.csv`
+//! is the shipped one.
 
 use anyhow::{bail, Result};
 use fitting::fit::synthetic::synth::{write_set, SynthSpec};
@@ -29,9 +32,30 @@ pub struct Args {
     /// SHPB start temperatures [K], comma separated.
     #[arg(long, value_delimiter = ',', default_value = "293.15,573.15")]
     pub temperatures: Vec<f64>,
+    /// Instead of the set: write F2 of the 3D quarter SHPB model with the MPM-level
+    /// synthetic's truth (the data of verify's `fit/mpm-synthetic` rows) to this CSV;
+    /// `data/experiments/mpm_synthetic_f2.csv` is the shipped file. Takes minutes.
+    #[arg(long)]
+    pub shpb_3d: Option<PathBuf>,
+}
+
+/// `--shpb-3d`: the MPM-level synthetic's data, from the data folder beside the file.
+fn write_shpb_3d(file: &std::path::Path) -> Result<()> {
+    use crate::verify::{data::VerifyData, fit::synthetic_945_truth};
+    use fitting::fit::synthetic::{mpm_synthetic, synthetic_data};
+    let truth = synthetic_945_truth(&VerifyData::new("data"))?;
+    let at = (mpm_synthetic::DATA, mpm_synthetic::KERNEL);
+    eprintln!("running the {} model with {} (minutes)", at.0, at.1.name());
+    let f2 = mpm_synthetic::data(&truth, at.0, at.1)?;
+    synthetic_data::write(file, &f2, &truth, at)?;
+    println!("wrote {}", file.display());
+    Ok(())
 }
 
 pub fn run(args: Args) -> Result<()> {
+    if let Some(file) = &args.shpb_3d {
+        return write_shpb_3d(file);
+    }
     if !(args.noise >= 0.0 && args.noise < 1.0) {
         bail!("--noise {}: expected a fraction in [0, 1)", args.noise);
     }

@@ -33,6 +33,11 @@ impl VerifyData {
         self.root.join("scenes")
     }
 
+    /// The MPM-level synthetic's data, F2 of the 3D quarter (`mpw synth --shpb-3d`).
+    pub fn mpm_synthetic_data(&self) -> PathBuf {
+        self.root.join("experiments/mpm_synthetic_f2.csv")
+    }
+
     /// The shipped synthetic experiment set (`mpw fit`'s default).
     pub fn default_set(&self) -> PathBuf {
         self.root.join("experiments/default.toml")

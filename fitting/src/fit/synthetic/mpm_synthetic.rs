@@ -10,6 +10,8 @@
 //! - the axisymmetric MPM level at `FIT_LAYERS` points along, which must recover the truth
 //!   within the default fit's tolerances (A, B within 2 %, `verify::RECOVERY_TOLERANCE`).
 //!
+//! The data take minutes to make (`data`); `synthetic_data` keeps them in a file.
+//!
 //! Data from the axisymmetric model at 80 points along (before the 3D levels): with uGIMP
 //! for both levels B came out +2.4 % (A −0.5 %); with CPDI, whose domains follow F,
 //! A −0.35 % and B +0.99 %.
@@ -73,8 +75,8 @@ fn drive() -> (FaceSignals, Vec<usize>) {
 /// The MPM model `at` a level and point count with `kernel` and friction 0.1, compared
 /// on F2.
 fn mpm_level(truth: &Material, at: Discretization, kernel: ShapeFunction) -> Result<MpmShpb> {
-    let (signals, samples) = drive();
-    let times = samples.iter().map(|&k| signals.time_s[k]).collect();
+    let (signals, _) = drive();
+    let times = compared_times();
     let theta = truth.param("theta0").expect("a JC material has theta0");
     let mut settings = ModelSettings::new(at.layers, Drive::MeasuredVelocity);
     settings.shape_function = kernel;
@@ -91,8 +93,7 @@ fn mpm_level(truth: &Material, at: Discretization, kernel: ShapeFunction) -> Res
 
 /// A block of `model` against `measured`.
 fn block(name: &str, model: Box<dyn ExperimentModel>, measured: &[f64]) -> Result<Block> {
-    let (signals, samples) = drive();
-    let times: Vec<f64> = samples.iter().map(|&k| signals.time_s[k]).collect();
+    let times = compared_times();
     let x = times.iter().map(|t| t * 1e6).collect();
     let label = ("time [µs]", "F2 [kN]");
     Block::new(
@@ -135,14 +136,26 @@ fn fit(truth: &Material, block: &Block) -> Result<[f64; 2]> {
     Ok([x[0], x[1]])
 }
 
-/// Make the data with `truth` by the model `data` and fit both levels, the axisymmetric
-/// MPM level at `fit_layers`, both MPM models with `kernel`.
+/// The data: F2 [N] of the model `at` with `kernel` and `truth` under the drive, at the
+/// compared times (`compared_times`). Minutes for the 3D quarter at 40 points along,
+/// so `verify` reads it from the file `synthetic_data` wrote (`mpw synth --shpb-3d`).
+pub fn data(truth: &Material, at: Discretization, kernel: ShapeFunction) -> Result<Vec<f64>> {
+    mpm_level(truth, at, kernel)?.predict(truth)
+}
+
+/// The times [s] at which the levels are compared with the data.
+pub fn compared_times() -> Vec<f64> {
+    let (signals, samples) = drive();
+    samples.iter().map(|&k| signals.time_s[k]).collect()
+}
+
+/// Fit both levels to `measured` (`data` with `truth`): the single-point level and the
+/// axisymmetric MPM level at `fit_layers`, with `kernel`.
 pub fn recovery(
     truth: &Material,
-    (data, fit_layers): (Discretization, usize),
-    kernel: ShapeFunction,
+    measured: &[f64],
+    (fit_layers, kernel): (usize, ShapeFunction),
 ) -> Result<Recovery> {
-    let measured = mpm_level(truth, data, kernel)?.predict(truth)?;
     let (signals, samples) = drive();
     let theta = truth.param("theta0").unwrap();
     let specimen = ShpbSpecimen::new(
@@ -158,7 +171,7 @@ pub fn recovery(
     let single = block(
         "single point",
         Box::new(SinglePoint::new(specimen)),
-        &measured,
+        measured,
     )?;
     let mpm = block(
         "MPM",
@@ -170,7 +183,7 @@ pub fn recovery(
             },
             kernel,
         )?),
-        &measured,
+        measured,
     )?;
     Ok(Recovery {
         truth: FREE.map(|n| truth.param(n).unwrap()),
