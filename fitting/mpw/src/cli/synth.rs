@@ -35,11 +35,12 @@ pub struct Args {
     /// Instead of the set: write F2 of the 3D quarter SHPB model with the MPM-level
     /// synthetic's truth (the data of verify's `fit/mpm-synthetic` rows) to this CSV;
     /// `data/experiments/mpm_synthetic_f2.csv` is the shipped file. Takes minutes.
-    #[arg(long)]
+    #[arg(long, conflicts_with_all = ["material", "out", "noise", "seed", "rate", "temperatures"])]
     pub shpb_3d: Option<PathBuf>,
 }
 
-/// `--shpb-3d`: the MPM-level synthetic's data, from the data folder beside the file.
+/// `--shpb-3d`: the MPM-level synthetic's data, its truth from `data/materials` under the
+/// working directory (the repository root).
 fn write_shpb_3d(file: &std::path::Path) -> Result<()> {
     use crate::verify::{data::VerifyData, fit::synthetic_945_truth};
     use fitting::fit::synthetic::{mpm_synthetic, synthetic_data};
