@@ -146,6 +146,22 @@ mod tests {
         assert!(err.to_string().contains("`param B`"), "{err}");
         let err = read(&path, &truth(), (AT, ShapeFunction::Linear)).unwrap_err();
         assert!(err.to_string().contains("`kernel`"), "{err}");
+        // a damaged row and a missing row: refused, naming the line or the count
+        let text = std::fs::read_to_string(&path).unwrap();
+        let rows_start = text.lines().position(|l| l == "time_s,f2_n").unwrap() + 1;
+        let mut lines: Vec<&str> = text.lines().collect();
+        lines[rows_start + 2] = "1.3e-5,5.2e4x";
+        std::fs::write(&path, lines.join("\n")).unwrap();
+        let err = read(&path, &truth(), (AT, ShapeFunction::Cpdi)).unwrap_err();
+        assert!(
+            err.to_string()
+                .contains(&format!("line {}", rows_start + 3)),
+            "{err}"
+        );
+        lines.remove(rows_start + 2);
+        std::fs::write(&path, lines.join("\n")).unwrap();
+        let err = read(&path, &truth(), (AT, ShapeFunction::Cpdi)).unwrap_err();
+        assert!(err.to_string().contains("rows, expected"), "{err}");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }
