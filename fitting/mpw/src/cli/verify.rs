@@ -41,22 +41,27 @@ pub struct Args {
     /// out/verify_runs, or under Slurm's work_dir).
     #[command(flatten)]
     pub executor: super::executor_args::ExecutorArgs,
+    /// Only these parts of the table, comma separated (materials, shpb, fit, fit-mpm,
+    /// fit-real, mpm, shpb-model, shpb-derivatives, cutting, cutting-orthogonal,
+    /// cutting-derivatives); every part when not given.
+    #[arg(long, value_delimiter = ',')]
+    pub part: Vec<String>,
 }
 
-/// Every part of the catalogue as a task of `executor`, the rows read back in table order.
+/// The catalogue's `parts` as tasks of `executor`, the rows read back in table order.
 fn table_through(
     executor: &dyn runs::Executor,
     dir: &Path,
-    data: &Path,
-    full: bool,
+    (data, full): (&Path, bool),
+    parts: &[&str],
 ) -> Result<Vec<Row>> {
     use crate::tasks::{VerifyRows, ROWS_FILE, VERIFY_PART};
     let data = data
         .canonicalize()
         .map_err(|e| anyhow::anyhow!("{}: {e}", data.display()))?;
-    let descriptions: Vec<runs::RunDescription> = crate::verify::CATALOGUE
+    let descriptions: Vec<runs::RunDescription> = parts
         .iter()
-        .map(|(part, _)| {
+        .map(|part| {
             let mut d = runs::RunDescription::new(VERIFY_PART, &data);
             d.set
                 .insert("part".into(), toml::Value::String(part.to_string()));
@@ -299,9 +304,12 @@ pub fn run(args: Args) -> Result<()> {
     let subprocesses = args
         .executor
         .subprocesses("mpw-verify", PathBuf::from("out/verify_runs"))?;
+    let parts = crate::verify::selected(&args.part)?;
     let cases = match subprocesses {
-        None => crate::verify::table(&inputs)?,
-        Some((executor, dir)) => table_through(executor.as_ref(), &dir, &args.data, args.full)?,
+        None => crate::verify::table(&inputs, &parts)?,
+        Some((executor, dir)) => {
+            table_through(executor.as_ref(), &dir, (&args.data, args.full), &parts)?
+        }
     };
     println!(
         "{:<60} {:>14} {:>14} {:>12} result",

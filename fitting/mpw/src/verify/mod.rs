@@ -46,18 +46,19 @@ pub const CATALOGUE: [(&str, Part); 11] = [
     ("cutting-derivatives", cutting_derivatives::rows),
 ];
 
-/// Every row of the catalogue; a part that cannot run, or two rows of one name (two
-/// builds' tables are compared by name), is an error. Each part, when done, says on
-/// stderr how many rows it gave and how long it took (the whole table takes minutes).
-pub fn table(inputs: &Inputs) -> anyhow::Result<Vec<Row>> {
+/// The rows of the parts `names` of the catalogue (`selected`); a part that cannot run,
+/// or two rows of one name (two builds' tables are compared by name), is an error. Each
+/// part, when done, says on stderr how many rows it gave and how long it took (the whole
+/// table takes minutes).
+pub fn table(inputs: &Inputs, names: &[&str]) -> anyhow::Result<Vec<Row>> {
     let mut rows: Vec<Row> = vec![];
-    for (k, (name, _)) in CATALOGUE.iter().enumerate() {
+    for (k, name) in names.iter().enumerate() {
         let start = Instant::now();
         let part_rows = part(inputs, name)?;
         eprintln!(
             "verify: part {}/{} `{name}`: {} rows in {:.1} s",
             k + 1,
-            CATALOGUE.len(),
+            names.len(),
             part_rows.len(),
             start.elapsed().as_secs_f64()
         );
@@ -66,13 +67,35 @@ pub fn table(inputs: &Inputs) -> anyhow::Result<Vec<Row>> {
     unique(rows)
 }
 
+/// The parts named in `wanted`, in catalogue order; every part when `wanted` is empty. A
+/// name that is no part is an error listing the parts.
+pub fn selected(wanted: &[String]) -> anyhow::Result<Vec<&'static str>> {
+    if let Some(unknown) = wanted
+        .iter()
+        .find(|w| !CATALOGUE.iter().any(|(n, _)| n == w))
+    {
+        anyhow::bail!(
+            "no verification part `{unknown}`; the parts are {}",
+            part_names()
+        );
+    }
+    Ok((CATALOGUE.iter())
+        .map(|(n, _)| *n)
+        .filter(|n| wanted.is_empty() || wanted.iter().any(|w| w == n))
+        .collect())
+}
+
+/// The catalogue's part names, comma separated.
+fn part_names() -> String {
+    CATALOGUE.map(|(n, _)| n).join(", ")
+}
+
 /// The rows of the part `name` of the catalogue.
 pub fn part(inputs: &Inputs, name: &str) -> anyhow::Result<Vec<Row>> {
     let Some((_, rows)) = CATALOGUE.iter().find(|(n, _)| *n == name) else {
-        let names: Vec<&str> = CATALOGUE.iter().map(|(n, _)| *n).collect();
         anyhow::bail!(
             "no verification part `{name}`; the parts are {}",
-            names.join(", ")
+            part_names()
         );
     };
     rows(inputs).map_err(|e| e.context(format!("verification part {name}")))
