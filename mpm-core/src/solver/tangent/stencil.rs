@@ -13,15 +13,14 @@
 //!   derivatives carry the point's motion through r.
 //!
 //! Which cell holds the point or a vertex follows the real parts, as in the run. A node
-//! may appear more than once in a point's list (one entry per vertex that reaches it):
-//! every transfer adds the entries, so the sums are the run's.
+//! appears once in a point's list: the vertices' shares of it are summed in vertex order,
+//! as the run sums them (`shape::cpdi`), so a transfer does the work of each node once.
 
 use super::Dual;
 use crate::grid::{floor_i64, Grid};
 use crate::shape::domain::{Deformed, Follow, Stretched};
 use crate::shape::gimp::averaged_hat;
 use crate::shape::{box_indices, corners, linear, Reach, ShapeFunction};
-use materials::scalar::c;
 use nalgebra::{Matrix3, SMatrix, SVector};
 
 /// A kernel the derivative pass carries.
@@ -137,15 +136,13 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
         grid: &Grid<D>,
         (x, f, half): (&SVector<Dual<P>, D>, &Matrix3<Dual<P>>, &SVector<f64, D>),
     ) {
-        let start = i * self.room;
-        let (mut len, mut low, mut high) = (0, u32::MAX, 0);
-        let mut push = |node: i64, n: Dual<P>, grad: SVector<Dual<P>, D>| {
-            let node = node as u32;
-            (low, high) = (low.min(node), high.max(node));
-            self.node[start + len] = node;
-            self.n[start + len] = n;
-            self.grad[start + len] = grad;
-            len += 1;
+        let range = i * self.room..(i + 1) * self.room;
+        let mut list = List {
+            node: &mut self.node[range.clone()],
+            n: &mut self.n[range.clone()],
+            grad: &mut self.grad[range],
+            len: 0,
+            span: (u32::MAX, 0),
         };
         let (corner, xi) = grid.locate(&x.map(|x| x.re));
         let xi =
@@ -158,9 +155,10 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
                 let l = half.component_mul(&grid.inv_spacing);
                 for (node, n, grad) in gimp_box(&xi, &l, &grid.inv_spacing) {
                     let offset: i64 = (0..D).map(|k| node[k] * grid.strides[k] as i64).sum();
-                    push(corner as i64 + offset, n, grad);
+                    list.push(corner as i64 + offset, n, grad);
                 }
-                self.close(i, len, (low, high), grid.strides[D - 1]);
+                let (len, span) = (list.len, list.span);
+                self.close(i, len, span, grid.strides[D - 1]);
                 return;
             }
             SmoothKernel::UGimp => None,
@@ -170,38 +168,76 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
                 let w = linear(&xi, &grid.inv_spacing);
                 let offsets = grid.corner_offsets();
                 for k in 0..corners(D) {
-                    push((corner + offsets[k]) as i64, w.n[k], w.grad[k]);
+                    list.push((corner + offsets[k]) as i64, w.n[k], w.grad[k]);
                 }
             }
-            Some((r, r_inv_t)) => {
-                let share = 1.0 / corners(D) as f64;
-                for j in 0..corners(D) {
-                    let sign =
-                        SVector::<f64, D>::from_fn(
-                            |k, _| {
-                                if (j >> k) & 1 == 1 {
-                                    1.0
-                                } else {
-                                    -1.0
-                                }
-                            },
-                        );
-                    let sign = sign.map(c::<Dual<P>>);
-                    let vertex = xi + (r * sign).component_mul(&grid.inv_spacing.map(c));
-                    let g = r_inv_t * sign * c::<Dual<P>>(share);
-                    let cell: [i64; D] = std::array::from_fn(|k| floor_i64(vertex[k].re));
-                    let local = SVector::<Dual<P>, D>::from_fn(|k, _| vertex[k] - cell[k] as f64);
-                    let base: i64 = (0..D).map(|k| cell[k] * grid.strides[k] as i64).sum();
-                    for (m, w) in corner_weights(&local).iter().enumerate().take(corners(D)) {
-                        let offset: i64 = (0..D)
-                            .map(|k| ((m >> k) & 1) as i64 * grid.strides[k] as i64)
-                            .sum();
-                        push(corner as i64 + base + offset, *w * share, g * *w);
-                    }
-                }
-            }
+            Some(edges) => add_vertices(&mut list, (corner, &xi), edges, grid),
         }
-        self.close(i, len, (low, high), grid.strides[D - 1]);
+        let (len, span) = (list.len, list.span);
+        self.close(i, len, span, grid.strides[D - 1]);
+    }
+}
+
+/// One point's entries as they are filled, and the lowest and highest node among them.
+struct List<'a, const D: usize, const P: usize> {
+    node: &'a mut [u32],
+    n: &'a mut [Dual<P>],
+    grad: &'a mut [SVector<Dual<P>, D>],
+    len: usize,
+    span: (u32, u32),
+}
+
+impl<const D: usize, const P: usize> List<'_, D, P> {
+    /// A new entry for `node`.
+    #[inline(always)]
+    fn push(&mut self, node: i64, n: Dual<P>, grad: SVector<Dual<P>, D>) {
+        let node = node as u32;
+        self.span = (self.span.0.min(node), self.span.1.max(node));
+        self.node[self.len] = node;
+        self.n[self.len] = n;
+        self.grad[self.len] = grad;
+        self.len += 1;
+    }
+
+    /// A vertex's share of `node`, added to the entry the node has already, as the run
+    /// sums the shares (a new entry else).
+    #[inline(always)]
+    fn add(&mut self, node: i64, n: Dual<P>, grad: SVector<Dual<P>, D>) {
+        match self.node[..self.len].iter().position(|&m| m as i64 == node) {
+            Some(k) => {
+                self.n[k] += n;
+                self.grad[k] += grad;
+            }
+            None => self.push(node, n, grad),
+        }
+    }
+}
+
+/// The vertex form's entries for a point at local coordinates `xi` in the cell whose
+/// lowest node is `corner`, with half-edge vectors R and R⁻ᵀ (`edges`): each vertex
+/// x + R ξʲ adds N(x^j)/2ᴰ and N(x^j) R⁻ᵀ ξʲ/2ᴰ to each corner of the cell that holds it.
+fn add_vertices<const D: usize, const P: usize>(
+    list: &mut List<'_, D, P>,
+    (corner, xi): (usize, &SVector<Dual<P>, D>),
+    (r, r_inv_t): (SMatrix<Dual<P>, D, D>, SMatrix<Dual<P>, D, D>),
+    grid: &Grid<D>,
+) {
+    let share = 1.0 / corners(D) as f64;
+    for j in 0..corners(D) {
+        // the vertex x + R ξʲ [cells] and its gradient vector R⁻ᵀ ξʲ / 2ᴰ
+        let vertex = SVector::<Dual<P>, D>::from_fn(|k, _| {
+            xi[k] + signed_sum(&r, j, k) * grid.inv_spacing[k]
+        });
+        let g = SVector::<Dual<P>, D>::from_fn(|k, _| signed_sum(&r_inv_t, j, k) * share);
+        let cell: [i64; D] = std::array::from_fn(|k| floor_i64(vertex[k].re));
+        let local = SVector::<Dual<P>, D>::from_fn(|k, _| vertex[k] - cell[k] as f64);
+        let base: i64 = (0..D).map(|k| cell[k] * grid.strides[k] as i64).sum();
+        for (m, w) in corner_weights(&local).iter().enumerate().take(corners(D)) {
+            let offset: i64 = (0..D)
+                .map(|k| ((m >> k) & 1) as i64 * grid.strides[k] as i64)
+                .sum();
+            list.add(corner as i64 + base + offset, *w * share, g * *w);
+        }
     }
 }
 
@@ -219,21 +255,44 @@ fn edges_and_inverse<M: Follow, const D: usize, const P: usize>(
     Some((r, inv.transpose()))
 }
 
-/// R⁻¹ with its derivatives d(R⁻¹) = −R⁻¹ dR R⁻¹; its real part is the run's inverse of
-/// the real R, `None` where that is singular.
+/// R⁻¹ with its derivatives d(R⁻¹) = −R⁻¹ dR R⁻¹ (products with the real R⁻¹ as a
+/// factor); its real part is the run's inverse of the real R, `None` where that is
+/// singular.
 fn inverse<const D: usize, const P: usize>(
     r: &SMatrix<Dual<P>, D, D>,
 ) -> Option<SMatrix<Dual<P>, D, D>> {
-    let real = r.map(|x| x.re).try_inverse()?.map(Dual::from_re);
-    let change = r.map(|x| Dual::new(0.0, x.eps));
-    Some(real - real * change * real)
+    let real = r.map(|x| x.re).try_inverse()?;
+    // dR R⁻¹, then −R⁻¹ (dR R⁻¹)
+    let right = SMatrix::<Dual<P>, D, D>::from_fn(|k, j| {
+        (0..D).fold(Dual::from_re(0.0), |sum, l| sum + r[(k, l)] * real[(l, j)])
+    });
+    Some(SMatrix::from_fn(|i, j| {
+        let change = (0..D).fold(Dual::from_re(0.0), |sum, k| {
+            sum + right[(k, j)] * real[(i, k)]
+        });
+        Dual::new(real[(i, j)], -change.eps)
+    }))
+}
+
+/// Σ_l m_kl ξʲ_l, ξʲ_l = ±1 by bit l of vertex number j: row k of m times the vertex's
+/// signs.
+#[inline]
+fn signed_sum<const D: usize, const P: usize>(
+    m: &SMatrix<Dual<P>, D, D>,
+    j: usize,
+    k: usize,
+) -> Dual<P> {
+    (0..D).fold(Dual::from_re(0.0), |sum, l| match (j >> l) & 1 {
+        1 => sum + m[(k, l)],
+        _ => sum - m[(k, l)],
+    })
 }
 
 /// The linear weights of a cell's 2ᴰ corners at local coordinates `xi` (x fastest).
 fn corner_weights<const D: usize, const P: usize>(xi: &SVector<Dual<P>, D>) -> [Dual<P>; 8] {
     let mut weight = [Dual::from_re(0.0); 8];
-    weight[0] = Dual::from_re(1.0);
-    for k in 0..D {
+    (weight[0], weight[1]) = (Dual::from_re(1.0) - xi[0], xi[0]);
+    for k in 1..D {
         let half = 1 << k;
         for m in 0..half {
             weight[m + half] = weight[m] * xi[k];
