@@ -202,13 +202,14 @@ impl<const D: usize, const P: usize> List<'_, D, P> {
     /// A vertex's share of `node`, added to the entry the node has already, as the run
     /// sums the shares (a new entry else).
     #[inline(always)]
-    fn add(&mut self, node: i64, n: Dual<P>, grad: SVector<Dual<P>, D>) {
-        match self.node[..self.len].iter().position(|&m| m as i64 == node) {
+    fn add(&mut self, node: u32, n: Dual<P>, grad: SVector<Dual<P>, D>) {
+        let entries = &self.node[..self.len];
+        match (0..entries.len()).find(|&k| entries[k] == node) {
             Some(k) => {
                 self.n[k] += n;
                 self.grad[k] += grad;
             }
-            None => self.push(node, n, grad),
+            None => self.push(node as i64, n, grad),
         }
     }
 }
@@ -222,8 +223,10 @@ fn add_vertices<const D: usize, const P: usize>(
     (r, r_inv_t): (SMatrix<Dual<P>, D, D>, SMatrix<Dual<P>, D, D>),
     grid: &Grid<D>,
 ) {
-    let share = 1.0 / corners(D) as f64;
-    for j in 0..corners(D) {
+    let vertices = corners(D);
+    let share = 1.0 / vertices as f64;
+    let offsets = grid.corner_offsets();
+    for j in 0..vertices {
         // the vertex x + R ξʲ [cells] and its gradient vector R⁻ᵀ ξʲ / 2ᴰ
         let vertex = SVector::<Dual<P>, D>::from_fn(|k, _| {
             xi[k] + signed_sum(&r, j, k) * grid.inv_spacing[k]
@@ -231,12 +234,14 @@ fn add_vertices<const D: usize, const P: usize>(
         let g = SVector::<Dual<P>, D>::from_fn(|k, _| signed_sum(&r_inv_t, j, k) * share);
         let cell: [i64; D] = std::array::from_fn(|k| floor_i64(vertex[k].re));
         let local = SVector::<Dual<P>, D>::from_fn(|k, _| vertex[k] - cell[k] as f64);
-        let base: i64 = (0..D).map(|k| cell[k] * grid.strides[k] as i64).sum();
-        for (m, w) in corner_weights(&local).iter().enumerate().take(corners(D)) {
-            let offset: i64 = (0..D)
-                .map(|k| ((m >> k) & 1) as i64 * grid.strides[k] as i64)
-                .sum();
-            list.add(corner as i64 + base + offset, *w * share, g * *w);
+        let base = corner as i64
+            + (0..D)
+                .map(|k| cell[k] * grid.strides[k] as i64)
+                .sum::<i64>();
+        let weight = corner_weights(&local);
+        for m in 0..vertices {
+            let node = (base + offsets[m] as i64) as u32;
+            list.add(node, weight[m] * share, g * weight[m]);
         }
     }
 }
@@ -263,13 +268,10 @@ fn inverse<const D: usize, const P: usize>(
 ) -> Option<SMatrix<Dual<P>, D, D>> {
     let real = r.map(|x| x.re).try_inverse()?;
     // dR R⁻¹, then −R⁻¹ (dR R⁻¹)
-    let right = SMatrix::<Dual<P>, D, D>::from_fn(|k, j| {
-        (0..D).fold(Dual::from_re(0.0), |sum, l| sum + r[(k, l)] * real[(l, j)])
-    });
+    let right =
+        SMatrix::<Dual<P>, D, D>::from_fn(|k, j| sum_over::<D, P>(|l| r[(k, l)] * real[(l, j)]));
     Some(SMatrix::from_fn(|i, j| {
-        let change = (0..D).fold(Dual::from_re(0.0), |sum, k| {
-            sum + right[(k, j)] * real[(i, k)]
-        });
+        let change = sum_over::<D, P>(|k| right[(k, j)] * real[(i, k)]);
         Dual::new(real[(i, j)], -change.eps)
     }))
 }
@@ -286,6 +288,12 @@ fn signed_sum<const D: usize, const P: usize>(
         1 => sum + m[(k, l)],
         _ => sum - m[(k, l)],
     })
+}
+
+/// Σ_l term(l) over l < D, from the first term.
+#[inline(always)]
+fn sum_over<const D: usize, const P: usize>(term: impl Fn(usize) -> Dual<P>) -> Dual<P> {
+    (1..D).fold(term(0), |sum, l| sum + term(l))
 }
 
 /// The linear weights of a cell's 2ᴰ corners at local coordinates `xi` (x fastest).
