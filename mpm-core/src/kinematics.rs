@@ -16,6 +16,27 @@ use materials::tensor::mul;
 use nalgebra::{Matrix3, SMatrix, SVector};
 use std::f64::consts::PI;
 
+/// (I + L Δt) F for an in-plane L (D = 2): the rows below D are F's own and each sum runs
+/// over the D in-plane terms. The full product adds L's zeros times F as well, which
+/// changes no finite number but the sign of a zero.
+#[inline]
+fn in_plane_update<T: Scalar, const D: usize>(
+    l: &SMatrix<T, D, D>,
+    f: &Matrix3<T>,
+    dt: f64,
+) -> Matrix3<T> {
+    let step = |i: usize, k: usize| match i == k {
+        true => T::one() + l[(i, k)] * dt,
+        false => l[(i, k)] * dt,
+    };
+    Matrix3::from_fn(|i, j| match i < D {
+        true => (1..D).fold(step(i, 0) * f[(0, j)], |sum, k| {
+            sum + step(i, k) * f[(k, j)]
+        }),
+        false => f[(i, j)],
+    })
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Kinematics {
     PlaneStrain,
@@ -46,7 +67,10 @@ impl Kinematics {
     ) -> (Matrix3<T>, Matrix3<T>) {
         let mut l3 = Matrix3::zeros();
         l3.fixed_view_mut::<D, D>(0, 0).copy_from(l);
-        let mut f_new = mul(&(Matrix3::identity() + l3.map(|l| l * dt)), f);
+        let mut f_new = match D {
+            3 => mul(&(Matrix3::identity() + l3.map(|l| l * dt)), f),
+            _ => in_plane_update(l, f, dt),
+        };
         if self == Kinematics::Axisymmetric {
             l3[(2, 2)] = vg[0] / x[0];
             f_new[(2, 2)] = (x[0] + vg[0] * dt) / x_ref[0];
