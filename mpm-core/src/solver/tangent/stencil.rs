@@ -335,3 +335,109 @@ fn gimp_box<const D: usize, const P: usize>(
         (node, n, grad)
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape::{Cpdi, Kernel, Point, Weights};
+
+    /// The run's weights of one point: node offsets from its cell's lower corner, N, ∇N.
+    struct Collected<const D: usize>(Vec<([i64; D], f64, SVector<f64, D>)>);
+
+    impl<const D: usize> Weights<D> for Collected<D> {
+        fn push(&mut self, offset: [i64; D], n: f64, grad: SVector<f64, D>) {
+            self.0.push((offset, n, grad));
+        }
+    }
+
+    /// The pass's entries of a CPDI point at x with F, derivatives along x_0 and F_01.
+    fn pass_entries(
+        grid: &Grid<2>,
+        x: &SVector<f64, 2>,
+        f: &Matrix3<f64>,
+        half: &SVector<f64, 2>,
+    ) -> Vec<(u32, Dual<2>, SVector<Dual<2>, 2>)> {
+        let mut stencils = DualStencils::<2, 2>::new(1, &[SmoothKernel::Cpdi], 0);
+        let x_d = SVector::<Dual<2>, 2>::new(Dual::seeded(x[0], 0), Dual::from_re(x[1]));
+        let mut f_d = f.map(Dual::from_re);
+        f_d[(0, 1)] = Dual::seeded(f[(0, 1)], 1);
+        stencils.fill(0, SmoothKernel::Cpdi, grid, (&x_d, &f_d, half));
+        let (node, n, grad) = stencils.of(0);
+        (0..node.len()).map(|k| (node[k], n[k], grad[k])).collect()
+    }
+
+    /// A sheared and stretched domain whose four vertices lie in three cells (nodes shared
+    /// between vertices): the pass lists each node once, with the real N and ∇N of the
+    /// run's own kernel (`shape::cpdi`) to the bit, and derivatives along x_0 and F_01
+    /// that match central differences of the pass's own real parts.
+    #[test]
+    fn a_cpdi_point_lists_each_node_once_with_the_runs_weights() {
+        let mut grid = Grid::<2>::new(SVector::from([0.5, 0.5]), SVector::zeros());
+        grid.fit([0, 0], [8, 8], 2, 5);
+        let (x, half) = (SVector::from([2.27, 2.04]), SVector::from([0.125, 0.125]));
+        let f = Matrix3::new(1.3, 0.9, 0.0, 0.1, 0.8, 0.0, 0.0, 0.0, 1.0);
+        let entries = pass_entries(&grid, &x, &f, &half);
+
+        let (corner, xi) = grid.locate(&x);
+        let point = Point {
+            xi,
+            half: &half,
+            f: &f,
+            hex: None,
+            inv_h: &grid.inv_spacing,
+        };
+        let mut run = Collected(Vec::new());
+        Cpdi::evaluate(&point, &mut run);
+        assert!(
+            run.0.len() > 4,
+            "the vertices must reach more than one cell"
+        );
+        assert_eq!(
+            entries.len(),
+            run.0.len(),
+            "one entry per node the run reaches"
+        );
+        for (offset, n, grad) in &run.0 {
+            let node = corner as i64
+                + (0..2)
+                    .map(|k| offset[k] * grid.strides[k] as i64)
+                    .sum::<i64>();
+            let same: Vec<_> = entries.iter().filter(|e| e.0 as i64 == node).collect();
+            assert_eq!(same.len(), 1, "node {node} once");
+            let (_, n_d, grad_d) = same[0];
+            assert_eq!(n_d.re, *n, "N of node {node}");
+            assert_eq!(grad_d.map(|g| g.re), *grad, "∇N of node {node}");
+        }
+
+        // central differences of the real parts, h = 1e-6 of the cell along x_0 and of F_01
+        let h = 1e-6;
+        let moved = |dx: f64, df: f64| {
+            let mut f = f;
+            f[(0, 1)] += df;
+            pass_entries(&grid, &(x + SVector::from([dx * 0.5, 0.0])), &f, &half)
+        };
+        for (direction, (plus, minus), step) in [
+            (0, (moved(h, 0.0), moved(-h, 0.0)), h * 0.5),
+            (1, (moved(0.0, h), moved(0.0, -h)), h),
+        ] {
+            for (node, n, grad) in &entries {
+                let at = |list: &[(u32, Dual<2>, SVector<Dual<2>, 2>)]| {
+                    let e = list.iter().find(|e| e.0 == *node).expect("the same nodes");
+                    (e.1.re, e.2.map(|g| g.re))
+                };
+                let ((n_p, g_p), (n_m, g_m)) = (at(&plus), at(&minus));
+                let dn = (n_p - n_m) / (2.0 * step);
+                let dgrad = (g_p - g_m) / (2.0 * step);
+                // N ~ 1, ∇N ~ 1/h = 2 per m; the differences' round-off ~1e-16/1e-6
+                assert!(
+                    (n.eps[direction] - dn).abs() < 1e-8,
+                    "dN/d{direction} at {node}"
+                );
+                for k in 0..2 {
+                    let gap = (grad[k].eps[direction] - dgrad[k]).abs();
+                    assert!(gap < 1e-7, "d∇N_{k}/d{direction} at {node}: {gap:e}");
+                }
+            }
+        }
+    }
+}
