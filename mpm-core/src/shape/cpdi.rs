@@ -77,9 +77,6 @@ pub(super) fn vertex_nodes<const D: usize>(e: &SVector<f64, D>) -> usize {
     Reach::box_nodes(e).min(corners(D) * corners(D))
 }
 
-/// Most nodes of a vertex kernel, 4ᴰ for D ≤ 3.
-const MOST: usize = 64;
-
 /// N^I = Σ_j (w_j / v) N^I(x^j) and ∇N^I = Σ_j (g_j / v) N^I(x^j) over `vertices`
 /// (module docs); no vertices: the linear weights of the point's cell. The shares are
 /// summed per node in a box of 4 nodes per axis when the vertices' cells lie within 3
@@ -93,6 +90,20 @@ pub(super) fn vertex_weights<const D: usize>(
     if vertices.is_empty() {
         return Linear::evaluate(p, out);
     }
+    // room for the most nodes a vertex kernel reaches, 4ᴰ
+    match D {
+        3 => summed::<D, 64>(p, vertices, out),
+        _ => summed::<D, 16>(p, vertices, out),
+    }
+}
+
+/// `vertex_weights` for at least one vertex, the shares summed in room for `MOST` nodes.
+#[inline(always)]
+fn summed<const D: usize, const MOST: usize>(
+    p: &Point<'_, D>,
+    vertices: &[Vertex<D>],
+    out: &mut impl Weights<D>,
+) {
     let mut cell = [[0i64; D]; 8];
     let mut local = [SVector::<f64, D>::zeros(); 8];
     for (j, (offset, ..)) in vertices.iter().enumerate() {
