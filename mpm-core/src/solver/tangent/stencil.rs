@@ -155,7 +155,7 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
                 let l = half.component_mul(&grid.inv_spacing);
                 for (node, n, grad) in gimp_box(&xi, &l, &grid.inv_spacing) {
                     let offset: i64 = (0..D).map(|k| node[k] * grid.strides[k] as i64).sum();
-                    list.push(corner as i64 + offset, n, grad);
+                    list.push((corner as i64 + offset) as u32, n, grad);
                 }
                 let (len, span) = (list.len, list.span);
                 self.close(i, len, span, grid.strides[D - 1]);
@@ -168,7 +168,7 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
                 let w = linear(&xi, &grid.inv_spacing);
                 let offsets = grid.corner_offsets();
                 for k in 0..corners(D) {
-                    list.push((corner + offsets[k]) as i64, w.n[k], w.grad[k]);
+                    list.push((corner + offsets[k]) as u32, w.n[k], w.grad[k]);
                 }
             }
             Some(edges) => add_vertices(&mut list, (corner, &xi), edges, grid),
@@ -190,8 +190,7 @@ struct List<'a, const D: usize, const P: usize> {
 impl<const D: usize, const P: usize> List<'_, D, P> {
     /// A new entry for `node`.
     #[inline(always)]
-    fn push(&mut self, node: i64, n: Dual<P>, grad: SVector<Dual<P>, D>) {
-        let node = node as u32;
+    fn push(&mut self, node: u32, n: Dual<P>, grad: SVector<Dual<P>, D>) {
         self.span = (self.span.0.min(node), self.span.1.max(node));
         self.node[self.len] = node;
         self.n[self.len] = n;
@@ -209,7 +208,7 @@ impl<const D: usize, const P: usize> List<'_, D, P> {
                 self.n[k] += n;
                 self.grad[k] += grad;
             }
-            None => self.push(node as i64, n, grad),
+            None => self.push(node, n, grad),
         }
     }
 }
