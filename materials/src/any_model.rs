@@ -1,7 +1,7 @@
 //! A model chosen at run time (from a parameter file), still generic over the scalar.
 
 use crate::error::MaterialError;
-use crate::material::{Converged, Deliver, Keep, Model, State};
+use crate::material::{Deliver, Keep, Model, RealUpdate, State};
 use crate::neo_hooke::NeoHooke;
 use crate::plasticity::ElastoPlastic;
 use crate::scalar::Scalar;
@@ -59,7 +59,7 @@ impl<D: Scalar> Model<D> for AnyModel<D> {
         f: &M3<D>,
         dt: f64,
         old: &State<D>,
-        real: (&State<f64>, Option<&Converged>),
+        real: RealUpdate<'_>,
     ) -> Result<(M3<D>, State<D>), MaterialError> {
         each!(self, m => m.update_from_real(f, dt, old, real))
     }

@@ -6,7 +6,7 @@
 
 use crate::parameter_set;
 use crate::scalar::{c, Scalar};
-use crate::tensor::{det, mul_transpose_self, symmetric, trace, M3};
+use crate::tensor::{det, det_in, mul_transpose_self_in, symmetric_in, trace, M3};
 
 parameter_set! {
     /// Elastic constants and reference density.
@@ -46,16 +46,36 @@ impl<D: Scalar> Elastic<D> {
     /// `alpha_sigma`.
     #[inline]
     pub fn tau(&self, fe: &M3<D>, dtheta: D, alpha_sigma: D) -> M3<D> {
-        self.tau_of_stretch(&mul_transpose_self(fe), det(fe).ln(), dtheta, alpha_sigma)
+        self.tau_in::<false>(fe, dtheta, alpha_sigma)
+    }
+
+    /// `tau` of an `fe` with the structure `IN_PLANE` (`tensor::sum_coupled`).
+    #[inline]
+    pub fn tau_in<const IN_PLANE: bool>(&self, fe: &M3<D>, dtheta: D, alpha_sigma: D) -> M3<D> {
+        let b = mul_transpose_self_in::<IN_PLANE, D>(fe);
+        let ln_j = det_in::<IN_PLANE, D>(fe).ln();
+        self.tau_of_stretch_in::<IN_PLANE>(&b, ln_j, dtheta, alpha_sigma)
     }
 
     /// τ = G (b − I) + (Λ ln J − 3 α_σ κ (θ − θ0)) I from the left stretch b = Fe Feᵀ
     /// (symmetric: its entries on and above the diagonal are read) and ln J = ln det Fe.
     #[inline]
     pub fn tau_of_stretch(&self, b: &M3<D>, ln_j: D, dtheta: D, alpha_sigma: D) -> M3<D> {
+        self.tau_of_stretch_in::<false>(b, ln_j, dtheta, alpha_sigma)
+    }
+
+    /// `tau_of_stretch` of a `b` with the structure `IN_PLANE`.
+    #[inline]
+    pub fn tau_of_stretch_in<const IN_PLANE: bool>(
+        &self,
+        b: &M3<D>,
+        ln_j: D,
+        dtheta: D,
+        alpha_sigma: D,
+    ) -> M3<D> {
         let p = self.spherical(ln_j, dtheta, alpha_sigma);
         let g = self.shear_modulus();
-        symmetric(|i, j| match i == j {
+        symmetric_in::<IN_PLANE, D>(|i, j| match i == j {
             true => (b[(i, i)] - c::<D>(1.0)) * g + p,
             false => b[(i, j)] * g,
         })

@@ -58,6 +58,19 @@ pub type Keep<'a> = dyn FnMut(usize, &Converged) + 'a;
 /// A converged local problem of a model's update (the principal return's four unknowns).
 pub type Converged = Root<4>;
 
+/// What the run's own update of a point gave, for `Model::update_from_real`.
+#[derive(Clone, Copy)]
+pub struct RealUpdate<'a> {
+    /// The new state.
+    pub state: &'a State<f64>,
+    /// The local problem it converged to, where the run kept it (`update_batch_keeping`).
+    pub converged: Option<&'a Converged>,
+    /// Whether F, the old Fp⁻¹ and their derivatives keep the z axis (xz, yz, zx and zy
+    /// zero, as in plane strain and axisymmetric models): the update may then skip the
+    /// terms that structure makes zero (`tensor::mul_in`).
+    pub in_plane: bool,
+}
+
 /// A batch update point by point with `update`.
 pub fn one_by_one<D: Scalar>(
     update: impl Fn(&M3<D>, &State<D>) -> Result<(M3<D>, State<D>), MaterialError>,
@@ -102,20 +115,19 @@ pub trait Model<D: Scalar>: Clone + Send + Sync {
         old: &State<D>,
     ) -> Result<(M3<D>, State<D>), MaterialError>;
 
-    /// `update` given the new state `real` that the same update gave in real arithmetic
-    /// for the real parts of `f` and `old` (the run's own update, in a derivative pass),
-    /// and the local problem it `converged` to where it kept it (`update_batch_keeping`):
-    /// a model that solves a local problem takes the solution from there and only
-    /// differentiates it. The same result as `update` to round-off; the default is
-    /// `update`. A model that wraps another forwards it.
+    /// `update` given what the same update gave in real arithmetic for the real parts of
+    /// `f` and `old` (the run's own update, in a derivative pass): a model that solves a
+    /// local problem takes the solution from there and only differentiates it. The same
+    /// result as `update` to round-off; the default is `update`. A model that wraps
+    /// another forwards it.
     fn update_from_real(
         &self,
         f: &M3<D>,
         dt: f64,
         old: &State<D>,
-        (real, converged): (&State<f64>, Option<&Converged>),
+        real: RealUpdate<'_>,
     ) -> Result<(M3<D>, State<D>), MaterialError> {
-        let _ = (real, converged);
+        let _ = real;
         self.update(f, dt, old)
     }
 

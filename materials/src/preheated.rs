@@ -7,7 +7,7 @@
 //! θ_start with τ(λ_θ I) = 0:
 //! 3 Λ ln λ + G (λ² − 1) − 3 α_σ κ (θ_start − θ0) = 0, solved by Newton (≈ α_σ Δθ).
 
-use crate::material::{Converged, Deliver, Keep, Model, State};
+use crate::material::{Deliver, Keep, Model, RealUpdate, State};
 use crate::plasticity::ElastoPlastic;
 use crate::scalar::{c, Scalar};
 use crate::tensor::M3;
@@ -57,7 +57,7 @@ impl<D: Scalar, M: Model<D>> Model<D> for Preheated<M> {
         f: &M3<D>,
         dt: f64,
         old: &State<D>,
-        real: (&State<f64>, Option<&Converged>),
+        real: RealUpdate<'_>,
     ) -> Result<(M3<D>, State<D>), MaterialError> {
         self.inner.update_from_real(f, dt, old, real)
     }

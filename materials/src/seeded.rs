@@ -7,7 +7,7 @@
 use crate::ad::seed_named;
 pub use crate::dual::Dual;
 use crate::error::MaterialError;
-use crate::material::{Converged, Model, State};
+use crate::material::{Converged, Model, RealUpdate, State};
 use crate::tensor::M3;
 
 /// A model whose free parameters carry unit dual parts, one direction each: an update in
@@ -40,8 +40,14 @@ impl<const P: usize, M: Model<Dual<P>>> SeededModel<P> for M {
         f: &M3<Dual<P>>,
         dt: f64,
         old: &State<Dual<P>>,
-        real: (&State<f64>, Option<&Converged>),
+        (state, converged): (&State<f64>, Option<&Converged>),
     ) -> Result<(M3<Dual<P>>, State<Dual<P>>), MaterialError> {
+        let in_plane = keeps_z_axis(f) && keeps_z_axis(&old.fp_inv);
+        let real = RealUpdate {
+            state,
+            converged,
+            in_plane,
+        };
         Model::update_from_real(self, f, dt, old, real)
     }
     fn initial_state(&self) -> State<Dual<P>> {
@@ -53,6 +59,22 @@ impl<const P: usize, M: Model<Dual<P>>> SeededModel<P> for M {
     fn p_wave_modulus(&self) -> Dual<P> {
         Model::p_wave_modulus(self)
     }
+}
+
+/// Whether `m` and its derivatives keep the z axis: xz, yz, zx and zy zero (±0). The
+/// bits of those numbers ORed, sign bit dropped: a few instructions where a test of each
+/// number costs the pass time.
+#[inline]
+fn keeps_z_axis<const P: usize>(m: &M3<Dual<P>>) -> bool {
+    let mut bits = 0u64;
+    for (i, j) in [(0, 2), (1, 2), (2, 0), (2, 1)] {
+        let x = &m[(i, j)];
+        bits |= x.re.to_bits();
+        for d in x.eps.iter() {
+            bits |= d.to_bits();
+        }
+    }
+    bits << 1 == 0
 }
 
 /// `model` with parameter `free[k]` seeded in direction k; `Err` names a parameter the

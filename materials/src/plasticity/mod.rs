@@ -27,10 +27,10 @@ use crate::elastic::Elastic;
 use crate::error::MaterialError;
 use crate::flow_stress::{FlowStress, Onset, MOLTEN_THERMAL_FACTOR};
 use crate::lanes::{pack, F64x4, MAX_LANES};
-use crate::material::{one_by_one, Converged, Deliver, Keep, Model, State};
+use crate::material::{one_by_one, Converged, Deliver, Keep, Model, RealUpdate, State};
 use crate::parameter_set;
 use crate::scalar::{c, Scalar};
-use crate::tensor::{all_finite, det, lift, mul, re, von_mises, M3};
+use crate::tensor::{all_finite, det, det_in, lift, mul, mul_in, re, von_mises, M3};
 use return_principal::Yielding;
 
 parameter_set! {
@@ -68,8 +68,14 @@ pub struct ElastoPlastic<D = f64> {
 impl<D: Scalar> ElastoPlastic<D> {
     /// Kirchhoff stress of the elastic part at temperature `theta`.
     pub fn tau(&self, fe: &M3<D>, theta: D) -> M3<D> {
+        self.tau_in::<false>(fe, theta)
+    }
+
+    /// `tau` of an `fe` with the structure `IN_PLANE` (`tensor::sum_coupled`).
+    fn tau_in<const IN_PLANE: bool>(&self, fe: &M3<D>, theta: D) -> M3<D> {
+        let (theta0, alpha_sigma) = (self.thermal.theta0, self.thermal.alpha_sigma);
         self.elastic
-            .tau(fe, theta - self.thermal.theta0, self.thermal.alpha_sigma)
+            .tau_in::<IN_PLANE>(fe, theta - theta0, alpha_sigma)
     }
 
     /// Flow stress after a plastic increment `dalpha` over `dt` at temperature `theta`.
@@ -163,6 +169,7 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
                     tau: None,
                     molten: false,
                     converged: None,
+                    in_plane: false,
                 }
             }
             ReturnMap::Principal => {
@@ -180,7 +187,11 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
         f: &M3<D>,
         dt: f64,
         old: &State<D>,
-        (real, converged): (&State<f64>, Option<&Converged>),
+        RealUpdate {
+            state: real,
+            converged,
+            in_plane,
+        }: RealUpdate<'_>,
     ) -> Result<(M3<D>, State<D>), MaterialError> {
         let theta = old.theta.re();
         let flow = self.flow.map(|_, v| v.re());
@@ -189,7 +200,12 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
             // The run kept the point elastic; a molten point that did not flow (a trial
             // strain without deviator) takes the whole update and its molten derivative.
             return match molten {
-                false => self.trial_stress(f, old).map(|s| self.stay_elastic(s, old)),
+                false if in_plane => {
+                    (self.trial_stress::<true>(f, old)).map(|s| self.stay_elastic::<true>(s, old))
+                }
+                false => {
+                    (self.trial_stress::<false>(f, old)).map(|s| self.stay_elastic::<false>(s, old))
+                }
                 true => self.update(f, dt, old),
             };
         }
@@ -200,6 +216,7 @@ impl<D: Scalar> Model<D> for ElastoPlastic<D> {
             tau: None,
             molten,
             converged: converged.copied(),
+            in_plane,
         };
         self.after_return(f, dt, old, real)
     }
@@ -250,7 +267,7 @@ impl<D: Scalar> ElastoPlastic<D> {
             );
             for (k, (f_i, old_i)) in f_c.iter().zip(old_c).enumerate() {
                 let i = first * MAX_LANES + k;
-                let trial = match self.trial_stress(f_i, old_i) {
+                let trial = match self.trial_stress::<false>(f_i, old_i) {
                     Ok(stress) => self.decide(stress, old_i, onsets.lane(k)),
                     Err(e) => Trial::Done(Err(e)),
                 };
@@ -306,6 +323,8 @@ struct RealReturn {
     molten: bool,
     /// y* and K⁻¹ of the return as the run solved it, where it kept them.
     converged: Option<Converged>,
+    /// Whether F, the old Fp⁻¹ and their derivatives keep the z axis (`RealUpdate`).
+    in_plane: bool,
 }
 
 impl From<return_principal::Returned> for RealReturn {
@@ -317,6 +336,7 @@ impl From<return_principal::Returned> for RealReturn {
             tau: Some(r.tau),
             molten: false,
             converged: None,
+            in_plane: false,
         }
     }
 }
@@ -348,7 +368,7 @@ impl<D: Scalar> ElastoPlastic<D> {
     /// The elastic trial state: its result if it does not yield.
     #[inline(always)]
     fn trial(&self, f: &M3<D>, old: &State<D>) -> Trial<D> {
-        match self.trial_stress(f, old) {
+        match self.trial_stress::<false>(f, old) {
             Ok(stress) => {
                 let old_re = old.re();
                 let flow = self.flow.map(|_, v| v.re());
@@ -359,16 +379,21 @@ impl<D: Scalar> ElastoPlastic<D> {
         }
     }
 
-    /// J, Fe^tr = F Fp_n⁻¹, and τ^tr where it may be the result (real scalars).
+    /// J, Fe^tr = F Fp_n⁻¹, and τ^tr where it may be the result (real scalars), of
+    /// tensors with the structure `IN_PLANE`.
     #[inline(always)]
-    fn trial_stress(&self, f: &M3<D>, old: &State<D>) -> Result<TrialStress<D>, MaterialError> {
-        let j = det(f);
+    fn trial_stress<const IN_PLANE: bool>(
+        &self,
+        f: &M3<D>,
+        old: &State<D>,
+    ) -> Result<TrialStress<D>, MaterialError> {
+        let j = det_in::<IN_PLANE, D>(f);
         if j.re() <= 0.0 || !j.re().is_finite() {
             return Err(MaterialError::InvertedDeformation { det_f: j.re() });
         }
-        let fe = mul(f, &old.fp_inv);
+        let fe = mul_in::<IN_PLANE, D>(f, &old.fp_inv);
         // Dual scalars carry τ^tr only where it is the result.
-        let tau = (D::NDERIV == 0).then(|| self.tau(&fe, old.theta));
+        let tau = (D::NDERIV == 0).then(|| self.tau_in::<IN_PLANE>(&fe, old.theta));
         Ok(TrialStress { j, fe, tau })
     }
 
@@ -384,14 +409,18 @@ impl<D: Scalar> ElastoPlastic<D> {
 
     /// The elastic update from the trial state: σ = τ^tr / J, the history kept (Δα = 0).
     #[inline(always)]
-    fn stay_elastic(&self, stress: TrialStress<D>, old: &State<D>) -> (M3<D>, State<D>) {
+    fn stay_elastic<const IN_PLANE: bool>(
+        &self,
+        stress: TrialStress<D>,
+        old: &State<D>,
+    ) -> (M3<D>, State<D>) {
         let new = State {
             dalpha: c::<D>(0.0),
             ..*old
         };
         let tau = stress
             .tau
-            .unwrap_or_else(|| self.tau(&stress.fe, old.theta));
+            .unwrap_or_else(|| self.tau_in::<IN_PLANE>(&stress.fe, old.theta));
         (tau * stress.j.recip(), new)
     }
 
@@ -401,7 +430,7 @@ impl<D: Scalar> ElastoPlastic<D> {
     fn decide(&self, stress: TrialStress<D>, old: &State<D>, onset: Onset) -> Trial<D> {
         let phi_trial = self.trial_von_mises(&stress, old) - onset.tau_y0;
         if phi_trial <= 0.0 {
-            return Trial::Done(Ok(self.stay_elastic(stress, old)));
+            return Trial::Done(Ok(self.stay_elastic::<false>(stress, old)));
         }
         Trial::Yields { onset, phi_trial }
     }
@@ -425,9 +454,9 @@ impl<D: Scalar> ElastoPlastic<D> {
         } else {
             let (fp_inv, dalpha) = (&real.fp_inv, real.dalpha);
             let Flowed { fp_inv, tau, alpha } = match (real.molten, self.return_map) {
-                (true, _) => return_principal_dual::molten_step(self, f, old)?,
+                (true, _) => return_principal_dual::molten_step(self, f, old, real.in_plane)?,
                 (false, ReturnMap::Principal) => {
-                    let real = (fp_inv, dalpha, real.converged.as_ref());
+                    let real = (fp_inv, dalpha, real.converged.as_ref(), real.in_plane);
                     return_principal_dual::implicit_step(self, f, old, dt, real)?
                 }
                 (false, ReturnMap::Reference) => {
@@ -456,7 +485,12 @@ impl<D: Scalar> ElastoPlastic<D> {
             theta: old.theta + heating,
             dalpha,
         };
-        let sigma = tau * det(f).recip();
+        // (real scalars: never in plane, the branch compiled away)
+        let j = match D::NDERIV > 0 && real.in_plane {
+            true => det_in::<true, _>(f),
+            false => det(f),
+        };
+        let sigma = tau * j.recip();
         if !all_finite(&sigma) {
             return Err(MaterialError::NonFinite {
                 what: "Cauchy stress",

@@ -42,8 +42,8 @@ use crate::plasticity::{return_principal, ElastoPlastic, Flowed};
 use crate::scalar::{c, Scalar};
 use crate::sym_eigen;
 use crate::tensor::{
-    inverse, mul, mul_real_left, mul_real_right, mul_transpose_self, re, rotate_into, rotate_out,
-    symmetric, M3,
+    inverse, mul_in, mul_real_left_in, mul_real_right_in, mul_transpose_self_in, re,
+    rotate_into_in, rotate_out_in, symmetric_in, M3,
 };
 use nalgebra::{Matrix3, SVector, Vector3};
 
@@ -76,15 +76,31 @@ fn residual_derivatives<D: Scalar>(
 
 /// Fp⁻¹, τ and α with their derivatives, from the real return (`fp_inv`, `dalpha` = Δα)
 /// of the same F and old state, and its y* and K⁻¹ where the run kept them (else formed
-/// here from Fp⁻¹ and Δα, `converged_again`).
+/// here from Fp⁻¹ and Δα, `converged_again`); `in_plane` where F, Fp⁻¹_n and their
+/// derivatives keep the z axis (`RealUpdate::in_plane`).
 pub fn implicit_step<D: Scalar>(
+    m: &ElastoPlastic<D>,
+    f: &M3<D>,
+    old: &State<D>,
+    dt: f64,
+    (fp_inv, dalpha, converged, in_plane): (&M3<f64>, f64, Option<&Converged>, bool),
+) -> Result<Flowed<D>, MaterialError> {
+    let real = (fp_inv, dalpha, converged);
+    match in_plane {
+        true => implicit_step_in::<true, D>(m, f, old, dt, real),
+        false => implicit_step_in::<false, D>(m, f, old, dt, real),
+    }
+}
+
+/// `implicit_step` of tensors with the structure `IN_PLANE` (`tensor::mul_in`).
+fn implicit_step_in<const IN_PLANE: bool, D: Scalar>(
     m: &ElastoPlastic<D>,
     f: &M3<D>,
     old: &State<D>,
     dt: f64,
     (fp_inv, dalpha, converged): (&M3<f64>, f64, Option<&Converged>),
 ) -> Result<Flowed<D>, MaterialError> {
-    let trial = TrialBasis::new(f, old);
+    let trial = TrialBasis::<D, IN_PLANE>::new(f, old);
     let Converged { y: y_real, k_inv } = match converged {
         Some(kept) => *kept,
         None => converged_again(m, f, old, dt, (&trial, fp_inv, dalpha))?,
@@ -107,12 +123,12 @@ pub fn implicit_step<D: Scalar>(
 
 /// y* and K⁻¹ of the run's return formed again from its Fp⁻¹ and Δα: ε_a = ½ ln λ_a^e in
 /// the trial eigenbasis, the onset of flow, and K⁻¹ by blocks.
-fn converged_again<D: Scalar>(
+fn converged_again<const IN_PLANE: bool, D: Scalar>(
     m: &ElastoPlastic<D>,
     f: &M3<D>,
     old: &State<D>,
     dt: f64,
-    (trial, fp_inv, dalpha): (&TrialBasis<D>, &M3<f64>, f64),
+    (trial, fp_inv, dalpha): (&TrialBasis<D, IN_PLANE>, &M3<f64>, f64),
 ) -> Result<Converged, MaterialError> {
     let (m_re, old_re) = (m.re(), old.re());
     // λ_a^e = (Vᵀ Fe Feᵀ V)_aa = |Feᵀ v_a|², Fe = F Fp⁻¹ of the run's return
@@ -138,13 +154,26 @@ fn converged_again<D: Scalar>(
 /// Fp⁻¹, τ and α with their derivatives for a point at or above melting
 /// (`return_principal::molten`): the whole deviatoric trial strain flows, ε_a = mean ε^tr
 /// and Δα = √(2/3) ‖dev ε^tr‖, closed forms in ε^tr, so ∂ε_a/∂ε_b^tr = 1/3 takes the place
-/// of K⁻¹ in step 3.
+/// of K⁻¹ in step 3; `in_plane` as in `implicit_step`.
 pub fn molten_step<D: Scalar>(
     m: &ElastoPlastic<D>,
     f: &M3<D>,
     old: &State<D>,
+    in_plane: bool,
 ) -> Result<Flowed<D>, MaterialError> {
-    let trial = TrialBasis::new(f, old);
+    match in_plane {
+        true => molten_step_in::<true, D>(m, f, old),
+        false => molten_step_in::<false, D>(m, f, old),
+    }
+}
+
+/// `molten_step` of tensors with the structure `IN_PLANE`.
+fn molten_step_in<const IN_PLANE: bool, D: Scalar>(
+    m: &ElastoPlastic<D>,
+    f: &M3<D>,
+    old: &State<D>,
+) -> Result<Flowed<D>, MaterialError> {
+    let trial = TrialBasis::<D, IN_PLANE>::new(f, old);
     let mean = trial.eps.sum() / c::<D>(3.0);
     let dev = trial.eps.map(|e| e - mean);
     let dalpha = dev.dot(&dev).sqrt() * c::<D>((2.0f64 / 3.0).sqrt());
@@ -157,8 +186,9 @@ pub fn molten_step<D: Scalar>(
     })
 }
 
-/// The trial state in the real eigenbasis of b^tr (step 1 of the module doc).
-struct TrialBasis<D> {
+/// The trial state in the real eigenbasis of b^tr (step 1 of the module doc), of tensors
+/// with the structure `IN_PLANE`.
+struct TrialBasis<D, const IN_PLANE: bool> {
     fe: M3<D>,
     /// V, the real eigenvectors of b^tr.
     vectors: M3<f64>,
@@ -168,13 +198,14 @@ struct TrialBasis<D> {
     eps: Vector3<D>,
 }
 
-impl<D: Scalar> TrialBasis<D> {
+impl<D: Scalar, const IN_PLANE: bool> TrialBasis<D, IN_PLANE> {
     #[inline(always)]
     fn new(f: &M3<D>, old: &State<D>) -> Self {
-        let fe = mul(f, &old.fp_inv);
-        let b = mul_transpose_self(&fe);
+        let fe = mul_in::<IN_PLANE, D>(f, &old.fp_inv);
+        let b = mul_transpose_self_in::<IN_PLANE, D>(&fe);
+        // in plane, e_z is the third eigenvector (`sym_eigen`)
         let vectors = sym_eigen::decompose(&re(&b)).vectors;
-        let in_basis = rotate_into(&vectors, &b);
+        let in_basis = rotate_into_in::<IN_PLANE, D>(&vectors, &b);
         let eps = Vector3::from_fn(|a, _| in_basis[(a, a)].ln() * c::<D>(0.5));
         TrialBasis {
             fe,
@@ -196,9 +227,10 @@ impl<D: Scalar> TrialBasis<D> {
         deps: &Matrix3<f64>,
     ) -> Result<(M3<D>, M3<D>), MaterialError> {
         let ratio = Vector3::from_fn(|a, _| (eps[a] - self.eps[a]).exp());
-        let flow_in_basis = flow_in_eigenbasis(&ratio, &self.in_basis, deps);
-        let fe = mul(&rotate_out(&self.vectors, &flow_in_basis), &self.fe);
-        let fp_inv = plastic_part(f, &fe)?;
+        let flow_in_basis = flow_in_eigenbasis::<IN_PLANE, D>(&ratio, &self.in_basis, deps);
+        let flow = rotate_out_in::<IN_PLANE, D>(&self.vectors, &flow_in_basis);
+        let fe = mul_in::<IN_PLANE, D>(&flow, &self.fe);
+        let fp_inv = plastic_part::<IN_PLANE, D>(f, &fe)?;
         Ok((fp_inv, self.stress(m, theta, eps, &flow_in_basis)))
     }
 
@@ -209,7 +241,7 @@ impl<D: Scalar> TrialBasis<D> {
         let trial = &self.in_basis;
         // m_a λ_a^tr
         let stretch = |a: usize| flow[(a, a)].re() * trial[(a, a)].re();
-        let elastic_stretch = symmetric(|a, b| match a == b {
+        let elastic_stretch = symmetric_in::<IN_PLANE, D>(|a, b| match a == b {
             true => flow[(a, a)] * flow[(a, a)] * trial[(a, a)],
             false => {
                 let d_trial = trial[(a, b)] - c::<D>(trial[(a, b)].re());
@@ -219,31 +251,35 @@ impl<D: Scalar> TrialBasis<D> {
         });
         let ln_j = eps[0] + eps[1] + eps[2];
         let (dtheta, alpha_sigma) = (theta - m.thermal.theta0, m.thermal.alpha_sigma);
-        let tau = m
-            .elastic
-            .tau_of_stretch(&elastic_stretch, ln_j, dtheta, alpha_sigma);
-        rotate_out(&self.vectors, &tau)
+        let tau =
+            m.elastic
+                .tau_of_stretch_in::<IN_PLANE>(&elastic_stretch, ln_j, dtheta, alpha_sigma);
+        rotate_out_in::<IN_PLANE, D>(&self.vectors, &tau)
     }
 }
 
 /// Fp⁻¹ = F⁻¹ Fe with F⁻¹ real (step 4): dFp⁻¹ = F⁻¹ (dFe − dF Fp⁻¹), two products with a
 /// real factor where a dual inverse and a dual product would do the same.
 #[inline(always)]
-fn plastic_part<D: Scalar>(f: &M3<D>, fe: &M3<D>) -> Result<M3<D>, MaterialError> {
+fn plastic_part<const IN_PLANE: bool, D: Scalar>(
+    f: &M3<D>,
+    fe: &M3<D>,
+) -> Result<M3<D>, MaterialError> {
     let f_re = re(f);
     let f_inv = inverse(&f_re).ok_or(MaterialError::InvertedDeformation {
         det_f: f_re.determinant(),
     })?;
-    let fp_inv = mul(&f_inv, &re(fe));
+    let fp_inv = mul_in::<IN_PLANE, f64>(&f_inv, &re(fe));
     let df = f.map(|x| x - c::<D>(x.re()));
-    Ok(mul_real_left(&f_inv, &(fe - mul_real_right(&df, &fp_inv))))
+    let dfe = fe - mul_real_right_in::<IN_PLANE, D>(&df, &fp_inv);
+    Ok(mul_real_left_in::<IN_PLANE, D>(&f_inv, &dfe))
 }
 
 /// M = exp(−√(3/2) Δα N) in the trial eigenbasis, with its derivatives (step 3 of the
 /// module doc): `ratio` the m_a, `in_basis` Vᵀ b^tr V (diagonal λ_a^tr), `deps`
 /// ∂ε_a/∂ε_b^tr.
 #[inline(always)]
-fn flow_in_eigenbasis<D: Scalar>(
+fn flow_in_eigenbasis<const IN_PLANE: bool, D: Scalar>(
     ratio: &Vector3<D>,
     in_basis: &M3<D>,
     deps: &Matrix3<f64>,
@@ -263,7 +299,7 @@ fn flow_in_eigenbasis<D: Scalar>(
             0.5 * (slope(a, a) - slope(a, b) + slope(b, b) - slope(b, a))
         }
     };
-    symmetric(|a, b| {
+    symmetric_in::<IN_PLANE, D>(|a, b| {
         if a == b {
             ratio[a]
         } else {
@@ -277,7 +313,7 @@ mod tests {
     use crate::ad::seed_named;
     use crate::elastic::Elastic;
     use crate::flow_stress::{FlowStress, JohnsonCookLaw};
-    use crate::material::{Model, State};
+    use crate::material::{Model, RealUpdate, State};
     use crate::plasticity::{ElastoPlastic, ReturnMap, Thermal};
     use crate::tensor::M3;
 
@@ -431,8 +467,12 @@ mod tests {
                 let (s_w, new_w) = model.update(&f_d, DT, &old_d).unwrap();
                 let whole = outputs(&s_w, &new_w);
                 for converged in [None, kept.as_ref()] {
-                    let (s_r, new_r) =
-                        (model.update_from_real(&f_d, DT, &old_d, (&real, converged))).unwrap();
+                    let from = RealUpdate {
+                        state: &real,
+                        converged,
+                        in_plane: false,
+                    };
+                    let (s_r, new_r) = model.update_from_real(&f_d, DT, &old_d, from).unwrap();
                     let from_real = outputs(&s_r, &new_r);
                     let error = worst(&whole, &from_real);
                     assert!(
@@ -452,6 +492,54 @@ mod tests {
                         );
                     }
                 }
+            }
+        }
+    }
+
+    /// Where F, Fp⁻¹_n and their derivatives keep the z axis, the update that skips the
+    /// terms that structure makes zero gives the general update's values and derivatives
+    /// exactly: elastic, yielding from virgin and after prestrain, and molten.
+    #[test]
+    fn the_in_plane_update_gives_the_general_numbers() {
+        let shear = M3::new(1.004, 0.012, 0.0, 0.003, 0.995, 0.0, 0.0, 0.0, 1.001);
+        let prestrain = M3::new(0.99, 0.004, 0.0, 0.0, 1.004, 0.0, 0.0, 0.0, 1.006);
+        let molten = State {
+            theta: 1800.0,
+            ..State::virgin(293.15)
+        };
+        let small = M3::new(1.0001, 0.00002, 0.0, -0.00001, 1.0, 0.0, 0.0, 0.0, 1.00003);
+        for (name, f, old) in [
+            ("elastic", small, State::virgin(293.15)),
+            ("from virgin", shear, State::virgin(293.15)),
+            (
+                "after prestrain",
+                shear * prestrain,
+                prestrained(&prestrain),
+            ),
+            ("molten", shear, molten),
+        ] {
+            let off_plane = [(0, 2), (1, 2), (2, 0), (2, 1)];
+            assert!(off_plane.iter().all(|&ij| old.fp_inv[ij] == 0.0), "{name}");
+            let (real, kept) = kept_update(ReturnMap::Principal, &f, &old);
+            let (model, mut f_d, old_d) = seeded(ReturnMap::Principal, &f, &old);
+            // no derivative along F_12, which would leave the plane
+            f_d[(1, 2)] = D9::from(0.0);
+            let update = |in_plane| {
+                let from = RealUpdate {
+                    state: &real,
+                    converged: kept.as_ref(),
+                    in_plane,
+                };
+                let (sigma, new) = model.update_from_real(&f_d, DT, &old_d, from).unwrap();
+                outputs(&sigma, &new)
+            };
+            let (general, in_plane) = (update(false), update(true));
+            assert!(general.iter().any(|x| x.eps.norm() > 0.0), "{name}");
+            for (k, (g, p)) in general.iter().zip(&in_plane).enumerate() {
+                assert!(
+                    g.re == p.re && g.eps == p.eps,
+                    "{name}, entry {k}: {g:?} against {p:?}"
+                );
             }
         }
     }

@@ -54,7 +54,7 @@ use crate::shape::{Reach, ShapeFunction};
 use contact::{DualLoad, FaceDerivatives};
 use materials::scalar::c;
 use materials::seeded::{Dual, SeededModel};
-use materials::tensor::det;
+use materials::tensor::{det, det_in};
 use materials::State;
 use nalgebra::{Matrix3, SMatrix, SVector};
 use rayon::prelude::*;
@@ -310,9 +310,9 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
             Stage::ContactForces => self.contact(s),
             Stage::BarFaces => self.bar_faces(s),
             Stage::MapMassMomentumForce | Stage::MapForce => self.add_surface_loads(s),
-            Stage::UpdateVelocity => self.gather(s, true, false)?,
-            Stage::UpdateStress => self.gather(s, false, true)?,
-            Stage::UpdateVelocityAndStress => self.gather(s, true, true)?,
+            Stage::UpdateVelocity => self.gather::<true, false>(s)?,
+            Stage::UpdateStress => self.gather::<false, true>(s)?,
+            Stage::UpdateVelocityAndStress => self.gather::<true, true>(s)?,
             _ => {}
         }
         Ok(())
@@ -432,15 +432,14 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
     }
 
     /// Derivatives of the grid-to-particle transfer (algorithms 11-12): v and ṽ with
-    /// `motion`, F, σ, V and history with `deformation`, point by point in parallel, after
+    /// `MOTION`, F, σ, V and history with `DEFORMATION`, point by point in parallel, after
     /// the transfer itself: the nodes are as it read them, the real F and history before
     /// it are kept (`keep_before_update`), and the material's update takes the return the
-    /// run solved (`SeededModel::update`).
-    fn gather(
+    /// run solved (`SeededModel::update`). (Constants, so that the interpolation forms
+    /// only what the transfer reads.)
+    fn gather<const MOTION: bool, const DEFORMATION: bool>(
         &mut self,
         s: &Solver<D>,
-        motion: bool,
-        deformation: bool,
     ) -> Result<(), SimulationError> {
         let cell = s.grid.min_spacing();
         let updates: Vec<Deformation<'_>> = (s.blocks.iter())
@@ -476,7 +475,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                 .map(|(i, (v, vg, f, sigma, vol, st))| -> Failure {
                     let x = join_all(&s.particles.position[i], &position[i]);
                     let (v_grid, a, l) = interpolate(nodes, stencils.of(i));
-                    if motion {
+                    if MOTION {
                         *v = join_all(&s.particles.velocity[i], v) + a.map(|a| a * dt);
                         let beta = s.settings.pic_fraction;
                         if beta > 0.0 {
@@ -484,7 +483,7 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                         }
                         *vg = v_grid;
                     }
-                    if !deformation {
+                    if !DEFORMATION {
                         return None;
                     }
                     let b = s
@@ -512,7 +511,11 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                         let what = "derivative of the material update (σ or history)";
                         return Some((i, Box::new(Cause::NonFinite { what })));
                     }
-                    let j = det(&f_new);
+                    // a plane model's F keeps the z axis
+                    let j = match D {
+                        2 => det_in::<true, _>(&f_new),
+                        _ => det(&f_new),
+                    };
                     *sigma = updates[b].with_viscosity(sigma_new, &l3, j);
                     *vol = j * s.particles.volume0[i];
                     *f = f_new;
