@@ -84,8 +84,13 @@ impl Reach {
     }
 
     /// Nodes of the box a domain of half-extents `e` [cells] meets, Π_k (⌈2 e_k⌉ + 2).
+    #[inline]
     pub fn box_nodes<const D: usize>(e: &SVector<f64, D>) -> usize {
-        e.iter().map(|&e| Reach::of(e).support).product()
+        let mut nodes = 1;
+        for &e in e.iter() {
+            nodes *= Reach::of(e).support;
+        }
+        nodes
     }
 }
 
