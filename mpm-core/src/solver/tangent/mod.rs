@@ -126,6 +126,15 @@ fn condition_stiffness<const D: usize>(
     Ok(k)
 }
 
+/// Store the derivatives of `new` in `kept`, entry by entry: the pass keeps only dual
+/// parts (`Tangent`), and whole dual matrices went through a call to memcpy.
+#[inline]
+fn keep_derivatives<const P: usize>(kept: &mut Matrix3<Dual<P>>, new: &Matrix3<Dual<P>>) {
+    for (k, n) in kept.iter_mut().zip(new.iter()) {
+        k.eps = n.eps;
+    }
+}
+
 /// `re` with the derivatives of `d`.
 #[inline]
 fn join<const P: usize>(re: f64, d: Dual<P>) -> Dual<P> {
@@ -516,10 +525,14 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
                         2 => det_in::<true, _>(&f_new),
                         _ => det(&f_new),
                     };
-                    *sigma = updates[b].with_viscosity(sigma_new, &l3, j);
+                    let sigma_new = updates[b].with_viscosity(sigma_new, &l3, j);
                     *vol = j * s.particles.volume0[i];
-                    *f = f_new;
-                    *st = state_new;
+                    keep_derivatives(sigma, &sigma_new);
+                    keep_derivatives(f, &f_new);
+                    keep_derivatives(&mut st.fp_inv, &state_new.fp_inv);
+                    st.alpha = state_new.alpha;
+                    st.theta = state_new.theta;
+                    st.dalpha = state_new.dalpha;
                     None
                 });
         match failure.reduce(|| None, earlier) {
