@@ -48,8 +48,10 @@ pub struct Stencil<'a, const D: usize> {
     pub grad: &'a [SVector<f64, D>],
 }
 
-/// One particle's room in the cache while its kernel writes to it.
-struct Slot<'a, const D: usize> {
+/// One particle's room in the cache while its weights are written to it: nodes given by
+/// number (`push_node`) or, as kernels give them, by offsets from the lower corner of the
+/// point's cell (`Weights::push`, after `corner` is set).
+pub struct NodeWeights<'a, const D: usize> {
     /// Node number of the lower corner of the point's cell.
     corner: usize,
     strides: &'a [usize; D],
@@ -59,14 +61,22 @@ struct Slot<'a, const D: usize> {
     len: usize,
 }
 
-impl<const D: usize> Weights<D> for Slot<'_, D> {
+impl<const D: usize> NodeWeights<'_, D> {
+    /// Node `node` with N and ∇N [1/m], after those pushed before.
     #[inline]
-    fn push(&mut self, offset: [i64; D], n: f64, grad: SVector<f64, D>) {
-        let shift: i64 = (0..D).map(|k| offset[k] * self.strides[k] as i64).sum();
-        self.node[self.len] = (self.corner as i64 + shift) as u32;
+    pub fn push_node(&mut self, node: u32, n: f64, grad: SVector<f64, D>) {
+        self.node[self.len] = node;
         self.n[self.len] = n;
         self.grad[self.len] = grad;
         self.len += 1;
+    }
+}
+
+impl<const D: usize> Weights<D> for NodeWeights<'_, D> {
+    #[inline]
+    fn push(&mut self, offset: [i64; D], n: f64, grad: SVector<f64, D>) {
+        let shift: i64 = (0..D).map(|k| offset[k] * self.strides[k] as i64).sum();
+        self.push_node((self.corner as i64 + shift) as u32, n, grad);
     }
 }
 
@@ -93,48 +103,55 @@ impl<const D: usize> WeightCache<D> {
         range: Range<usize>,
         (positions, (half, f, hex)): Domains<'_, D>,
     ) {
-        let room = self.room;
+        self.fill_with(grid, range, |i, out| {
+            let (corner, xi) = grid.locate(&positions[i]);
+            let point = Point {
+                xi,
+                half: &half[i],
+                f: &f[i],
+                hex: hex.get(i),
+                inv_h: &grid.inv_spacing,
+            };
+            out.corner = corner;
+            K::evaluate(&point, out);
+            corner
+        });
+    }
+
+    /// The weights of the points `range` on `grid`, in parallel: `weights(i, out)` pushes
+    /// point i's nodes to `out` and returns the node its lowest is taken to be if it
+    /// pushes none (its cell's lower corner).
+    pub fn fill_with(
+        &mut self,
+        grid: &Grid<D>,
+        range: Range<usize>,
+        weights: impl Fn(usize, &mut NodeWeights<'_, D>) -> usize + Sync,
+    ) {
+        let (room, count) = (self.room, self.len.len());
         let (start, end) = (range.start, range.end);
-        let slots = self.node[start * room..end * room].par_chunks_mut(room);
-        let points = (positions[range.clone()].par_iter().enumerate())
-            .zip(
-                self.len[range.clone()]
-                    .par_iter_mut()
-                    .zip(&mut self.lowest[range]),
-            )
-            .zip(slots)
+        let points = (self.len[range.clone()].par_iter_mut())
+            .zip(&mut self.lowest[range])
+            .zip(self.node[start * room..end * room].par_chunks_mut(room))
             .zip(self.n[start * room..end * room].par_chunks_mut(room))
-            .zip(self.grad[start * room..end * room].par_chunks_mut(room));
-        let cut = parallel::light(positions.len());
-        parallel::for_each(
-            points,
-            cut,
-            |(((((k, x), (len, lowest)), node), n), grad)| {
-                let i = start + k;
-                let (corner, xi) = grid.locate(x);
-                let point = Point {
-                    xi,
-                    half: &half[i],
-                    f: &f[i],
-                    hex: hex.get(i),
-                    inv_h: &grid.inv_spacing,
-                };
-                let mut slot = Slot {
-                    corner,
-                    strides: &grid.strides,
-                    node,
-                    n,
-                    grad,
-                    len: 0,
-                };
-                K::evaluate(&point, &mut slot);
-                *len = slot.len as u16;
-                *lowest = slot.node[..slot.len]
-                    .iter()
-                    .min()
-                    .map_or(corner, |&m| m as usize);
-            },
-        );
+            .zip(self.grad[start * room..end * room].par_chunks_mut(room))
+            .enumerate();
+        let cut = parallel::light(count);
+        parallel::for_each(points, cut, |(k, ((((len, lowest), node), n), grad))| {
+            let mut out = NodeWeights {
+                corner: 0,
+                strides: &grid.strides,
+                node,
+                n,
+                grad,
+                len: 0,
+            };
+            let empty = weights(start + k, &mut out);
+            *len = out.len as u16;
+            *lowest = out.node[..out.len]
+                .iter()
+                .min()
+                .map_or(empty, |&m| m as usize);
+        });
     }
 
     /// The nodes particle `i` reaches.

@@ -46,7 +46,11 @@ impl<M: Follow, const D: usize> Kernel<D> for Vertices<M> {
             return vertex_weights(p, &[], out);
         };
         let share = 1.0 / corners(D) as f64;
+        // the 2ᴰ vertices; in 2D the last four entries are left zero
         let vertices: [Vertex<D>; 8] = std::array::from_fn(|j| {
+            if j >= corners(D) {
+                return (SVector::zeros(), 0.0, SVector::zeros());
+            }
             let sign =
                 SVector::<f64, D>::from_fn(|k, _| if (j >> k) & 1 == 1 { 1.0 } else { -1.0 });
             (r * sign, share, r_inv_t * sign * share)
@@ -111,13 +115,10 @@ fn summed<const D: usize, const MOST: usize>(
         cell[j] = std::array::from_fn(|k| floor_i64(x[k]));
         local[j] = SVector::from_fn(|k, _| x[k] - cell[j][k] as f64);
     }
-    let cells = &cell[..vertices.len()];
-    let lo: [i64; D] = std::array::from_fn(|k| cells.iter().map(|c| c[k]).min().unwrap_or(0));
-    let fits = (0..D).all(|k| cells.iter().all(|c| c[k] - lo[k] <= 2));
     let mut n = [0.0; MOST];
     let mut grad = [SVector::<f64, D>::zeros(); MOST];
     let at = (vertices, &cell, &local);
-    if fits {
+    if let Some(lo) = four_node_box(&cell[..vertices.len()]) {
         // node m of the box of 4 nodes per axis from `lo` is entry Σ_k (m_k − lo_k) 4^k;
         // the entries touched are marked, and given in entry order (x fastest)
         let corner: [usize; 8] =
@@ -151,6 +152,16 @@ fn summed<const D: usize, const MOST: usize>(
             emit(*node, n[k], grad[k], out);
         }
     }
+}
+
+/// The lowest corner of the box of 4 nodes per axis that holds every node of the cells
+/// `cells` [cell indices], `None` if they lie more than 3 cells apart along some axis. In
+/// the box, node m is entry Σ_k (m_k − lo_k) 4^k: ascending entries are ascending node
+/// numbers on a grid numbered x fastest.
+pub(crate) fn four_node_box<const D: usize>(cells: &[[i64; D]]) -> Option<[i64; D]> {
+    let lo: [i64; D] = std::array::from_fn(|k| cells.iter().map(|c| c[k]).min().unwrap_or(0));
+    let fits = (0..D).all(|k| cells.iter().all(|c| c[k] - lo[k] <= 2));
+    fits.then_some(lo)
 }
 
 /// The vertices, the cells that hold them and their local coordinates in those cells.

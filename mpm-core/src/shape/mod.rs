@@ -16,7 +16,7 @@
 //! carried by F. A point without a domain (a_k = 0) gets the linear weights from every
 //! kernel.
 
-mod cpdi;
+pub(crate) mod cpdi;
 pub mod domain;
 pub(crate) mod gimp;
 mod hex;

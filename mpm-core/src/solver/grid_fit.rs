@@ -20,6 +20,14 @@ impl<const D: usize> Solver<D> {
     /// unless that box would need more than `limits::GRID_NODES` nodes, and evaluate
     /// every point's shape functions for the step, each body with its own kernel.
     pub(super) fn refit_grid(&mut self) -> Result<(), SimulationError> {
+        self.fit_grid_to_points()?;
+        self.evaluate_weights(|_| true);
+        Ok(())
+    }
+
+    /// Fit the grid to the points' bounding box as `refit_grid` does and make room for
+    /// the step's weights, the most nodes any point reaches.
+    pub(super) fn fit_grid_to_points(&mut self) -> Result<(), SimulationError> {
         let mut widest = Widest::default();
         for b in 0..self.blocks.len() {
             let block = match self.kernel_of(b) {
@@ -39,8 +47,17 @@ impl<const D: usize> Solver<D> {
         self.fit_grid(reach)?;
         let (s, p) = (&mut self.scratch, &self.particles);
         s.weights.prepare(widest.nodes, reach.support, p.len());
-        let (w, grid) = (&mut s.weights, &self.grid);
-        for block in &self.blocks {
+        Ok(())
+    }
+
+    /// Evaluate the weights of the points of every body `b` with `evaluates(b)`, each
+    /// with its body's kernel, on the fitted grid.
+    pub(super) fn evaluate_weights(&mut self, evaluates: impl Fn(usize) -> bool) {
+        let (w, grid, p) = (&mut self.scratch.weights, &self.grid, &self.particles);
+        for (b, block) in self.blocks.iter().enumerate() {
+            if !evaluates(b) {
+                continue;
+            }
             let range = block.range.clone();
             let at: Domains<'_, D> = (&p.position, (&p.half_size, &p.deformation, &p.hex));
             match block.kernel(self.settings.shape_function) {
@@ -52,7 +69,6 @@ impl<const D: usize> Solver<D> {
                 ShapeFunction::CpdiHex => w.fill::<CpdiHex>(grid, range, at),
             }
         }
-        Ok(())
     }
 
     /// Fit the grid to hold every stencil of `reach` over every shift.

@@ -26,7 +26,10 @@
 //! Cost: one dual update per point and step (the return mapping by the implicit function
 //! theorem at the run's converged return, dy = −K⁻¹ dr, with y* and K⁻¹ as the run's
 //! batched return kept them while a pass runs, `Solver::step_with`) and the transfers in
-//! P + 1 lanes. Memory: (P + 1) numbers for each real one of the state; no tape.
+//! P + 1 lanes. The weights are evaluated once a step, by the pass: their real parts are
+//! the run's own to the bit and in its order (linear, CPDI, cpGIMP), and the run takes
+//! them instead of evaluating its kernels again (`Solver::step_with`). Memory: (P + 1)
+//! numbers for each real one of the state; no tape.
 //!
 //! Carried: linear, CPDI and cpGIMP weights (module `stencil`), penalty contact with
 //! rigid bodies of prescribed motion and with faces on elastic bars, whose displacement
@@ -48,9 +51,11 @@ use super::scatter::{PointShare, Transfer};
 use super::slabs::Slabs;
 use super::{Solver, Stage};
 use crate::failure::{Cause, SimulationError};
-use crate::grid::Node;
+use crate::grid::{Grid, Node};
+use crate::material_block::MaterialBlock;
 use crate::parallel;
 use crate::shape::{Reach, ShapeFunction};
+use crate::weights::WeightCache;
 use contact::{DualLoad, FaceDerivatives};
 use materials::scalar::c;
 use materials::seeded::{Dual, SeededModel};
@@ -338,14 +343,32 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
         }
     }
 
-    /// The weights of every point at the start of the step (its first transfer), from x
-    /// and F with their derivatives, as the run evaluates them after fitting the grid.
+    /// The weights of every point at the start of the step, from x and F with their
+    /// derivatives, on the grid the run has just fitted (in parallel).
     fn evaluate_weights(&mut self, s: &Solver<D>) {
+        let (position, deformation, p) = (&self.position, &self.deformation, &s.particles);
+        let at = |i: usize| {
+            let x = join_all(&p.position[i], &position[i]);
+            (
+                x,
+                join_all(&p.deformation[i], &deformation[i]),
+                p.half_size[i],
+            )
+        };
         for (b, block) in s.blocks.iter().enumerate() {
-            for i in block.range.clone() {
-                let (x, f) = (self.position(s, i), self.deformation(s, i));
-                let point = (&x, &f, &s.particles.half_size[i]);
-                self.stencils.fill(i, self.kernels[b], &s.grid, point);
+            (self.stencils).fill(block.range.clone(), self.kernels[b], &s.grid, at);
+        }
+    }
+
+    /// Write the real parts of this step's weights into the run's cache for the bodies
+    /// whose kernels give the run's own weights (`SmoothKernel::gives_run_weights`); the
+    /// run evaluates the others' itself.
+    fn give_weights(&self, s: (&Grid<D>, &[MaterialBlock]), cache: &mut WeightCache<D>) {
+        let (grid, blocks) = s;
+        for (b, block) in blocks.iter().enumerate() {
+            if self.kernels[b].gives_run_weights() {
+                let range = block.range.clone();
+                cache.fill_with(grid, range, |i, out| self.stencils.real_weights(i, out));
             }
         }
     }
@@ -355,7 +378,6 @@ impl<const D: usize, const P: usize> Tangent<D, P> {
     /// threads).
     fn map(&mut self, s: &Solver<D>, t: Transfer) {
         if t.mass {
-            self.evaluate_weights(s);
             self.nodes.clear();
             self.nodes.resize(s.grid.nodes.len(), Node::zero());
             let stride = s.grid.strides[D - 1];
@@ -565,7 +587,16 @@ impl<const D: usize> Solver<D> {
         self.scratch.keep_returns = true;
         for &stage in self.settings.scheme.stages() {
             tangent.before(stage, self)?;
-            self.run_stage(stage)?;
+            match stage {
+                // the pass's weights' real parts are the run's (module `stencil`)
+                Stage::FitGrid => {
+                    self.fit_grid_to_points()?;
+                    tangent.evaluate_weights(self);
+                    tangent.give_weights((&self.grid, &self.blocks), &mut self.scratch.weights);
+                    self.evaluate_weights(|b| !tangent.kernels[b].gives_run_weights());
+                }
+                _ => self.run_stage(stage)?,
+            }
             tangent.after(stage, self)?;
         }
         Ok(())

@@ -18,10 +18,15 @@
 
 use super::Dual;
 use crate::grid::{floor_i64, Grid};
+use crate::parallel;
+use crate::shape::cpdi::four_node_box;
 use crate::shape::domain::{Deformed, Follow, Stretched};
 use crate::shape::gimp::averaged_hat;
 use crate::shape::{box_indices, corners, linear, Reach, ShapeFunction};
+use crate::weights::NodeWeights;
 use nalgebra::{Matrix3, SMatrix, SVector};
+use rayon::prelude::*;
+use std::ops::Range;
 
 /// A kernel the derivative pass carries.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -44,6 +49,13 @@ impl SmoothKernel {
         }
     }
 
+    /// Whether the real parts of the entries are the run's weights of this kernel to the
+    /// bit, in the run's order (`DualStencils::real_weights`); uGIMP's run evaluates
+    /// point-sized domains by the hat function itself, which the pass does not.
+    pub(super) fn gives_run_weights(self) -> bool {
+        self != SmoothKernel::UGimp
+    }
+
     /// Entries a point's list holds at most: 2ᴰ corners of one cell or of each of the 2ᴰ
     /// vertices' cells, or the `box_nodes` of the widest uGIMP box.
     pub(super) fn room(self, d: usize, box_nodes: usize) -> usize {
@@ -58,14 +70,22 @@ impl SmoothKernel {
 /// The entries of every point of one step, `room` per point.
 pub(super) struct DualStencils<const D: usize, const P: usize> {
     room: usize,
-    len: Vec<u8>,
-    /// Each point's lowest node number and the node rows (along the last axis) its
-    /// entries span, found as they are filled.
-    lowest: Vec<u32>,
-    rows: Vec<u32>,
+    listed: Vec<Listed>,
     node: Vec<u32>,
     n: Vec<Dual<P>>,
     grad: Vec<SVector<Dual<P>, D>>,
+}
+
+/// What a point's list holds besides its entries.
+#[derive(Debug, Clone, Copy)]
+struct Listed {
+    len: u8,
+    /// Whether the entries are the vertex form's, of which the run lists only the nodes
+    /// the vertices reach (N or ∇N not zero, `shape::cpdi`).
+    vertex_form: bool,
+    /// The lowest node number and the node rows (along the last axis) the entries span.
+    lowest: u32,
+    rows: u32,
 }
 
 /// One point's entries: node numbers, N and ∇N with derivatives.
@@ -83,9 +103,15 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
             .unwrap_or(corners(D));
         DualStencils {
             room,
-            len: vec![0; count],
-            lowest: vec![0; count],
-            rows: vec![1; count],
+            listed: vec![
+                Listed {
+                    len: 0,
+                    vertex_form: false,
+                    lowest: 0,
+                    rows: 1
+                };
+                count
+            ],
             node: vec![0; count * room],
             n: vec![Dual::from_re(0.0); count * room],
             grad: vec![SVector::zeros(); count * room],
@@ -95,7 +121,7 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
     /// Point `i`'s entries.
     #[inline]
     pub(super) fn of(&self, i: usize) -> Entries<'_, D, P> {
-        let range = i * self.room..i * self.room + self.len[i] as usize;
+        let range = i * self.room..i * self.room + self.listed[i].len as usize;
         (
             &self.node[range.clone()],
             &self.n[range.clone()],
@@ -103,62 +129,104 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
         )
     }
 
+    /// Point `i`'s weights as the run lists them (`weights::WeightCache`): the real parts
+    /// of its entries in their order, the vertex form's without the nodes its vertices do
+    /// not reach; its lowest node, for a list left empty.
+    pub(super) fn real_weights(&self, i: usize, out: &mut NodeWeights<'_, D>) -> usize {
+        let (node, n, grad) = self.of(i);
+        for k in 0..node.len() {
+            let (n, grad) = (n[k].re, grad[k].map(|g| g.re));
+            if !self.listed[i].vertex_form || n != 0.0 || grad != SVector::<f64, D>::zeros() {
+                out.push_node(node[k], n, grad);
+            }
+        }
+        self.lowest(i)
+    }
+
     /// Point `i`'s lowest node number.
     #[inline]
     pub(super) fn lowest(&self, i: usize) -> usize {
-        self.lowest[i] as usize
+        self.listed[i].lowest as usize
     }
 
     /// Node rows (along the last axis) that any point's entries span, at most.
     pub(super) fn support(&self) -> usize {
-        self.rows.iter().max().map_or(1, |&r| r as usize).max(2)
+        let rows = self.listed.iter().map(|l| l.rows as usize);
+        rows.max().map_or(1, |r| r).max(2)
     }
 
-    /// Record point `i`'s `len` entries, lowest and highest node `low` and `high` (rows
-    /// of `stride` nodes).
-    #[inline]
-    fn close(&mut self, i: usize, len: usize, (low, high): (u32, u32), stride: usize) {
-        self.len[i] = len as u8;
-        (self.lowest[i], self.rows[i]) = match len {
-            0 => (0, 1),
-            _ => (
-                low,
-                (high as usize / stride - low as usize / stride + 1) as u32,
-            ),
-        };
-    }
-
-    /// Evaluate point `i` at x with F and reference half-widths `half` on `grid`.
+    /// Evaluate the points `range`, all of kernel `kernel`, on `grid`, in parallel: point
+    /// i at x with F and reference half-widths (`at(i)`).
     pub(super) fn fill(
         &mut self,
-        i: usize,
+        range: Range<usize>,
         kernel: SmoothKernel,
         grid: &Grid<D>,
-        (x, f, half): (&SVector<Dual<P>, D>, &Matrix3<Dual<P>>, &SVector<f64, D>),
+        at: impl Fn(usize) -> PointDomain<D, P> + Sync,
     ) {
-        let range = i * self.room..(i + 1) * self.room;
-        let mut list = List {
-            node: &mut self.node[range.clone()],
-            n: &mut self.n[range.clone()],
-            grad: &mut self.grad[range],
-            len: 0,
-            span: (u32::MAX, 0),
-        };
+        let (room, start, end) = (self.room, range.start, range.end);
+        let cut = parallel::light(self.listed.len());
+        let points = (self.listed[range].par_iter_mut())
+            .zip(self.node[start * room..end * room].par_chunks_mut(room))
+            .zip(self.n[start * room..end * room].par_chunks_mut(room))
+            .zip(self.grad[start * room..end * room].par_chunks_mut(room))
+            .enumerate();
+        parallel::for_each(points, cut, |(k, (((listed, node), n), grad))| {
+            let mut list = List {
+                node,
+                n,
+                grad,
+                len: 0,
+                span: (u32::MAX, 0),
+                vertex_form: false,
+            };
+            list.fill(kernel, grid, at(start + k));
+            let ((low, high), stride) = (list.span, grid.strides[D - 1] as u32);
+            let (lowest, rows) = match list.len {
+                0 => (0, 1),
+                _ => (low, high / stride - low / stride + 1),
+            };
+            *listed = Listed {
+                len: list.len as u8,
+                vertex_form: list.vertex_form,
+                lowest,
+                rows,
+            };
+        });
+    }
+}
+
+/// A point's x and F with their derivatives, and its reference half-widths [m].
+pub(super) type PointDomain<const D: usize, const P: usize> =
+    (SVector<Dual<P>, D>, Matrix3<Dual<P>>, SVector<f64, D>);
+
+/// One point's entries as they are filled, and the lowest and highest node among them.
+struct List<'a, const D: usize, const P: usize> {
+    node: &'a mut [u32],
+    n: &'a mut [Dual<P>],
+    grad: &'a mut [SVector<Dual<P>, D>],
+    len: usize,
+    span: (u32, u32),
+    /// Whether the entries are the vertex form's.
+    vertex_form: bool,
+}
+
+impl<const D: usize, const P: usize> List<'_, D, P> {
+    /// The entries of a point of kernel `kernel` at x with F and half-widths `half`.
+    fn fill(&mut self, kernel: SmoothKernel, grid: &Grid<D>, (x, f, half): PointDomain<D, P>) {
         let (corner, xi) = grid.locate(&x.map(|x| x.re));
         let xi =
             SVector::<Dual<P>, D>::from_fn(|k, _| Dual::new(xi[k], x[k].eps * grid.inv_spacing[k]));
         let domain = match kernel {
             SmoothKernel::Linear => None,
-            SmoothKernel::Cpdi => edges_and_inverse::<Deformed, D, P>(half, f),
-            SmoothKernel::CpGimp => edges_and_inverse::<Stretched, D, P>(half, f),
+            SmoothKernel::Cpdi => edges_and_inverse::<Deformed, D, P>(&half, &f),
+            SmoothKernel::CpGimp => edges_and_inverse::<Stretched, D, P>(&half, &f),
             SmoothKernel::UGimp if half.min() > 0.0 => {
                 let l = half.component_mul(&grid.inv_spacing);
                 for (node, n, grad) in gimp_box(&xi, &l, &grid.inv_spacing) {
                     let offset: i64 = (0..D).map(|k| node[k] * grid.strides[k] as i64).sum();
-                    list.push((corner as i64 + offset) as u32, n, grad);
+                    self.push((corner as i64 + offset) as u32, n, grad);
                 }
-                let (len, span) = (list.len, list.span);
-                self.close(i, len, span, grid.strides[D - 1]);
                 return;
             }
             SmoothKernel::UGimp => None,
@@ -168,26 +236,16 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
                 let w = linear(&xi, &grid.inv_spacing);
                 let offsets = grid.corner_offsets();
                 for k in 0..corners(D) {
-                    list.push((corner + offsets[k]) as u32, w.n[k], w.grad[k]);
+                    self.push((corner + offsets[k]) as u32, w.n[k], w.grad[k]);
                 }
             }
-            Some(edges) => add_vertices(&mut list, (corner, &xi), edges, grid),
+            Some(edges) => {
+                self.vertex_form = true;
+                add_vertices(self, (corner, &xi), edges, grid)
+            }
         }
-        let (len, span) = (list.len, list.span);
-        self.close(i, len, span, grid.strides[D - 1]);
     }
-}
 
-/// One point's entries as they are filled, and the lowest and highest node among them.
-struct List<'a, const D: usize, const P: usize> {
-    node: &'a mut [u32],
-    n: &'a mut [Dual<P>],
-    grad: &'a mut [SVector<Dual<P>, D>],
-    len: usize,
-    span: (u32, u32),
-}
-
-impl<const D: usize, const P: usize> List<'_, D, P> {
     /// A new entry for `node`.
     #[inline(always)]
     fn push(&mut self, node: u32, n: Dual<P>, grad: SVector<Dual<P>, D>) {
@@ -216,6 +274,8 @@ impl<const D: usize, const P: usize> List<'_, D, P> {
 /// The vertex form's entries for a point at local coordinates `xi` in the cell whose
 /// lowest node is `corner`, with half-edge vectors R and R⁻ᵀ (`edges`): each vertex
 /// x + R ξʲ adds N(x^j)/2ᴰ and N(x^j) R⁻ᵀ ξʲ/2ᴰ to each corner of the cell that holds it.
+/// The nodes come in the run's order (`shape::cpdi`): ascending where the vertices' cells
+/// fit a box of 4 nodes per axis, else as the vertices first reach them.
 fn add_vertices<const D: usize, const P: usize>(
     list: &mut List<'_, D, P>,
     (corner, xi): (usize, &SVector<Dual<P>, D>),
@@ -223,25 +283,77 @@ fn add_vertices<const D: usize, const P: usize>(
     grid: &Grid<D>,
 ) {
     let vertices = corners(D);
-    let share = 1.0 / vertices as f64;
-    let offsets = grid.corner_offsets();
-    for j in 0..vertices {
-        // the vertex x + R ξʲ [cells] and its gradient vector R⁻ᵀ ξʲ / 2ᴰ
-        let vertex = SVector::<Dual<P>, D>::from_fn(|k, _| {
-            xi[k] + signed_sum(&r, j, k) * grid.inv_spacing[k]
-        });
-        let g = SVector::<Dual<P>, D>::from_fn(|k, _| signed_sum(&r_inv_t, j, k) * share);
-        let cell: [i64; D] = std::array::from_fn(|k| floor_i64(vertex[k].re));
-        let local = SVector::<Dual<P>, D>::from_fn(|k, _| vertex[k] - cell[k] as f64);
-        let base = corner as i64
-            + (0..D)
-                .map(|k| cell[k] * grid.strides[k] as i64)
-                .sum::<i64>();
-        let weight = corner_weights(&local);
-        for m in 0..vertices {
-            let node = (base + offsets[m] as i64) as u32;
-            list.add(node, weight[m] * share, g * weight[m]);
+    // the vertices x + R ξʲ [cells] and the cells that hold them
+    let vertex: [SVector<Dual<P>, D>; 8] = std::array::from_fn(|j| match j < vertices {
+        true => SVector::from_fn(|k, _| xi[k] + signed_sum(&r, j, k) * grid.inv_spacing[k]),
+        false => SVector::zeros(),
+    });
+    let cell: [[i64; D]; 8] =
+        std::array::from_fn(|j| std::array::from_fn(|k| floor_i64(vertex[j][k].re)));
+    let node_of = |node: [i64; D]| {
+        let offset: i64 = (0..D).map(|k| node[k] * grid.strides[k] as i64).sum();
+        (corner as i64 + offset) as u32
+    };
+    let placed = (&vertex[..vertices], &cell, &r_inv_t);
+    match (four_node_box(&cell[..vertices]), D) {
+        (None, _) => each_share(placed, |node, n, grad| list.add(node_of(node), n, grad)),
+        (Some(lo), 3) => summed_in_box::<D, P, 64>(list, lo, placed, node_of),
+        (Some(lo), _) => summed_in_box::<D, P, 16>(list, lo, placed, node_of),
+    }
+}
+
+/// A domain's vertices [cells], the cells that hold them and R⁻ᵀ.
+type Placed<'a, const D: usize, const P: usize> = (
+    &'a [SVector<Dual<P>, D>],
+    &'a [[i64; D]; 8],
+    &'a SMatrix<Dual<P>, D, D>,
+);
+
+/// Each vertex's share of each corner of its cell, N(x^j)/2ᴰ and N(x^j) R⁻ᵀ ξʲ/2ᴰ, to
+/// `sink` with the corner's node [cell indices], in vertex order and corner order (x
+/// fastest), as the run adds them (`shape::cpdi`).
+#[inline(always)]
+fn each_share<const D: usize, const P: usize>(
+    (vertices, cell, r_inv_t): Placed<'_, D, P>,
+    mut sink: impl FnMut([i64; D], Dual<P>, SVector<Dual<P>, D>),
+) {
+    let share = 1.0 / vertices.len() as f64;
+    for (j, vertex) in vertices.iter().enumerate() {
+        let g = SVector::<Dual<P>, D>::from_fn(|k, _| signed_sum(r_inv_t, j, k) * share);
+        let local = SVector::from_fn(|k, _| vertex[k] - cell[j][k] as f64);
+        let weight = corner_weights::<D, P>(&local);
+        for (m, w) in weight.iter().enumerate().take(vertices.len()) {
+            let node = std::array::from_fn(|k| cell[j][k] + ((m >> k) & 1) as i64);
+            sink(node, *w * share, g * *w);
         }
+    }
+}
+
+/// The vertices' shares summed in the box of 4 nodes per axis from `lo` (room for `MOST`
+/// entries), given to `list` in entry order.
+#[inline(always)]
+fn summed_in_box<const D: usize, const P: usize, const MOST: usize>(
+    list: &mut List<'_, D, P>,
+    lo: [i64; D],
+    placed: Placed<'_, D, P>,
+    node_of: impl Fn([i64; D]) -> u32,
+) {
+    let mut n = [Dual::from_re(0.0); MOST];
+    let mut grad = [SVector::<Dual<P>, D>::zeros(); MOST];
+    let mut touched = 0u64;
+    each_share(placed, |node, share_n, share_grad| {
+        let k: usize = (0..D)
+            .map(|i| ((node[i] - lo[i]) as usize) << (2 * i))
+            .sum();
+        touched |= 1 << k;
+        n[k] += share_n;
+        grad[k] += share_grad;
+    });
+    while touched != 0 {
+        let k = touched.trailing_zeros() as usize;
+        touched &= touched - 1;
+        let node = std::array::from_fn(|i| lo[i] + ((k >> (2 * i)) & 3) as i64);
+        list.push(node_of(node), n[k], grad[k]);
     }
 }
 
@@ -338,7 +450,8 @@ fn gimp_box<const D: usize, const P: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shape::{Cpdi, Kernel, Point, Weights};
+    use crate::shape::{CpGimp, Cpdi, Kernel, Linear, Point, Weights};
+    use crate::weights::WeightCache;
 
     /// The run's weights of one point: node offsets from its cell's lower corner, N, ∇N.
     struct Collected<const D: usize>(Vec<([i64; D], f64, SVector<f64, D>)>);
@@ -360,7 +473,7 @@ mod tests {
         let x_d = SVector::<Dual<2>, 2>::new(Dual::seeded(x[0], 0), Dual::from_re(x[1]));
         let mut f_d = f.map(Dual::from_re);
         f_d[(0, 1)] = Dual::seeded(f[(0, 1)], 1);
-        stencils.fill(0, SmoothKernel::Cpdi, grid, (&x_d, &f_d, half));
+        stencils.fill(0..1, SmoothKernel::Cpdi, grid, |_| (x_d, f_d, *half));
         let (node, n, grad) = stencils.of(0);
         (0..node.len()).map(|k| (node[k], n[k], grad[k])).collect()
     }
@@ -438,5 +551,76 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Points: x [m], F and reference half-widths [m].
+    type Points<'a> = (&'a [SVector<f64, 2>], &'a [Matrix3<f64>], &'a [SVector<f64, 2>]);
+
+    /// Each point's list of (node, bits of N, bits of ∇N).
+    type ListBits = Vec<Vec<(u32, u64, [u64; 2])>>;
+
+    /// The run's weights of `kernel` at the points `x` with F `f`, and those the pass
+    /// gives it (`DualStencils::real_weights`).
+    fn run_and_given<K: Kernel<2>>(
+        kernel: SmoothKernel,
+        grid: &Grid<2>,
+        (x, f, half): Points<'_>,
+    ) -> [ListBits; 2] {
+        let count = x.len();
+        let (mut run, mut given) = (WeightCache::default(), WeightCache::default());
+        run.prepare(16, 4, count);
+        given.prepare(16, 4, count);
+        run.fill::<K>(grid, 0..count, (x, (half, f, &[])));
+        let mut stencils = DualStencils::<2, 1>::new(count, &[kernel], 0);
+        let seeded = |i: usize| {
+            let xd = SVector::from_fn(|k, _| Dual::seeded(x[i][k], 0));
+            (
+                xd,
+                f[i].map(|v| Dual::new(v, SVector::from([0.1]))),
+                half[i],
+            )
+        };
+        stencils.fill(0..count, kernel, grid, seeded);
+        given.fill_with(grid, 0..count, |i, out| stencils.real_weights(i, out));
+        [run, given].map(|cache| {
+            (0..count)
+                .map(|i| {
+                    let w = cache.stencil(i);
+                    let bits = |k: usize| [w.grad[k][0].to_bits(), w.grad[k][1].to_bits()];
+                    let entry = |k: usize| (w.node[k], w.n[k].to_bits(), bits(k));
+                    (0..w.node.len()).map(entry).collect()
+                })
+                .collect()
+        })
+    }
+
+    /// The pass's weights' real parts are the run's to the bit and in the run's order,
+    /// without the nodes the run leaves out: linear weights; CPDI and cpGIMP domains whose
+    /// vertices sit on cell faces (nodes of zero weight), sheared over three cells (the box
+    /// of 4 nodes per axis) and stretched over twelve (the list); a CPDI point without a
+    /// domain (the linear weights).
+    #[test]
+    fn the_real_parts_are_the_runs_weights_in_its_order() {
+        let mut grid = Grid::<2>::new(SVector::from([0.5, 0.5]), SVector::zeros());
+        grid.fit([0, 0], [12, 12], 2, 5);
+        let x = [[2.375, 2.375], [2.27, 2.04], [3.1, 2.9], [2.6, 2.3]].map(SVector::from);
+        let f = [
+            Matrix3::identity(),
+            Matrix3::new(1.3, 0.9, 0.0, 0.1, 0.8, 0.0, 0.0, 0.0, 1.0),
+            Matrix3::new(24.0, 0.0, 0.0, 0.0, 0.3, 0.0, 0.0, 0.0, 1.0),
+            Matrix3::identity(),
+        ];
+        let half = [0.125, 0.125, 0.125, 0.0].map(|h| SVector::from([h, h]));
+        let at = (&x[..], &f[..], &half[..]);
+        let [run, given] = run_and_given::<Cpdi>(SmoothKernel::Cpdi, &grid, at);
+        assert_eq!(run, given, "CPDI");
+        // the upper vertices on the lower faces of the next cells: 9 nodes, 5 of them with
+        // N = 0 and ∇N = 0
+        assert_eq!(run[0].len(), 4, "vertices on cell faces");
+        assert_eq!(run[2].len(), 8, "two cells 12 apart");
+        let [run, given] = run_and_given::<CpGimp>(SmoothKernel::CpGimp, &grid, at);
+        assert_eq!(run, given, "cpGIMP");
+        let [run, given] = run_and_given::<Linear>(SmoothKernel::Linear, &grid, at);
+        assert_eq!(run, given, "linear");
     }
 }
