@@ -55,8 +55,10 @@ impl Kinematics {
 
     /// The 3×3 velocity gradient L [1/s] and the updated F_{n+1} = (I + L Δt) F_n of a
     /// point at `x` (reference position `x_ref`) from its in-plane gradient `l` and grid
-    /// velocity `vg`. Axisymmetric: L_θθ = v_r / r and F_θθ = (r + v_r Δt) / R.
-    #[inline]
+    /// velocity `vg`. Axisymmetric: L_θθ = v_r / r and F_θθ = (r + v_r Δt) / R. Always
+    /// inlined: called out of line with five dual directions, its matrices went through
+    /// memcpy.
+    #[inline(always)]
     pub fn deformation<T: Scalar, const D: usize>(
         self,
         l: &SMatrix<T, D, D>,

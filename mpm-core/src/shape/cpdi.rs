@@ -46,11 +46,7 @@ impl<M: Follow, const D: usize> Kernel<D> for Vertices<M> {
             return vertex_weights(p, &[], out);
         };
         let share = 1.0 / corners(D) as f64;
-        // the 2ᴰ vertices; in 2D the last four entries are left zero
         let vertices: [Vertex<D>; 8] = std::array::from_fn(|j| {
-            if j >= corners(D) {
-                return (SVector::zeros(), 0.0, SVector::zeros());
-            }
             let sign =
                 SVector::<f64, D>::from_fn(|k, _| if (j >> k) & 1 == 1 { 1.0 } else { -1.0 });
             (r * sign, share, r_inv_t * sign * share)

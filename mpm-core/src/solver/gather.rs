@@ -26,8 +26,10 @@ use std::sync::Mutex;
 
 /// Σ N v_I, Σ N a_I and L = Σ v_I ⊗ ∇N_I at a point that reaches the nodes `node` with
 /// weights `n` and gradients `grad`, in any scalar (dual in the derivative pass,
-/// `tangent`).
-#[inline]
+/// `tangent`). Always inlined: a caller that reads only some of the three leaves the
+/// others' sums out (for five dual directions the compiler would otherwise call it
+/// and form all three).
+#[inline(always)]
 pub(super) fn interpolate<T: Scalar, const D: usize>(
     nodes: &[Node<D, T>],
     (node, n, grad): (&[u32], &[T], &[SVector<T, D>]),

@@ -554,7 +554,11 @@ mod tests {
     }
 
     /// Points: x [m], F and reference half-widths [m].
-    type Points<'a> = (&'a [SVector<f64, 2>], &'a [Matrix3<f64>], &'a [SVector<f64, 2>]);
+    type Points<'a> = (
+        &'a [SVector<f64, 2>],
+        &'a [Matrix3<f64>],
+        &'a [SVector<f64, 2>],
+    );
 
     /// Each point's list of (node, bits of N, bits of ∇N).
     type ListBits = Vec<Vec<(u32, u64, [u64; 2])>>;
