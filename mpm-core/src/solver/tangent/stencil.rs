@@ -14,7 +14,9 @@
 //!
 //! Which cell holds the point or a vertex follows the real parts, as in the run. A node
 //! appears once in a point's list: the vertices' shares of it are summed in vertex order,
-//! as the run sums them (`shape::cpdi`), so a transfer does the work of each node once.
+//! as the run sums them (`shape::cpdi`), so a transfer does the work of each node once,
+//! and the nodes come in the run's order, so the real parts of a linear, CPDI or cpGIMP
+//! list are the run's weights, which the run takes from here (`real_weights`).
 
 use super::Dual;
 use crate::grid::{floor_i64, Grid};
