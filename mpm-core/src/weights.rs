@@ -51,7 +51,7 @@ pub struct Stencil<'a, const D: usize> {
 /// One particle's room in the cache while its weights are written to it: nodes given by
 /// number (`push_node`) or, as kernels give them, by offsets from the lower corner of the
 /// point's cell (`Weights::push`, after `corner` is set).
-pub struct NodeWeights<'a, const D: usize> {
+pub(crate) struct NodeWeights<'a, const D: usize> {
     /// Node number of the lower corner of the point's cell.
     corner: usize,
     strides: &'a [usize; D],
@@ -64,7 +64,7 @@ pub struct NodeWeights<'a, const D: usize> {
 impl<const D: usize> NodeWeights<'_, D> {
     /// Node `node` with N and ∇N [1/m], after those pushed before.
     #[inline]
-    pub fn push_node(&mut self, node: u32, n: f64, grad: SVector<f64, D>) {
+    pub(crate) fn push_node(&mut self, node: u32, n: f64, grad: SVector<f64, D>) {
         self.node[self.len] = node;
         self.n[self.len] = n;
         self.grad[self.len] = grad;
@@ -121,7 +121,7 @@ impl<const D: usize> WeightCache<D> {
     /// The weights of the points `range` on `grid`, in parallel: `weights(i, out)` pushes
     /// point i's nodes to `out` and returns the node its lowest is taken to be if it
     /// pushes none (its cell's lower corner).
-    pub fn fill_with(
+    pub(crate) fn fill_with(
         &mut self,
         grid: &Grid<D>,
         range: Range<usize>,
