@@ -111,8 +111,7 @@ fn summed<const D: usize, const MOST: usize>(
         cell[j] = std::array::from_fn(|k| floor_i64(x[k]));
         local[j] = SVector::from_fn(|k, _| x[k] - cell[j][k] as f64);
     }
-    let mut n = [0.0; MOST];
-    let mut grad = [SVector::<f64, D>::zeros(); MOST];
+    let mut sums = [Sums::ZERO; MOST];
     let at = (vertices, &cell, &local);
     if let Some(lo) = four_node_box(&cell[..vertices.len()]) {
         // node m of the box of 4 nodes per axis from `lo` is entry Σ_k (m_k − lo_k) 4^k;
@@ -127,12 +126,12 @@ fn summed<const D: usize, const MOST: usize>(
             touched |= 1 << (base + corner[c]);
             base + corner[c]
         };
-        spread(at, at_box, &mut n, &mut grad);
+        spread(at, at_box, &mut sums);
         while touched != 0 {
             let k = touched.trailing_zeros() as usize;
             touched &= touched - 1;
             let node = std::array::from_fn(|i| lo[i] + ((k >> (2 * i)) & 3) as i64);
-            emit(node, n[k], grad[k], out);
+            emit(node, &sums[k], out);
         }
     } else {
         let mut nodes: Vec<[i64; D]> = Vec::with_capacity(MOST);
@@ -143,9 +142,9 @@ fn summed<const D: usize, const MOST: usize>(
                 nodes.len() - 1
             })
         };
-        spread(at, at_list, &mut n, &mut grad);
+        spread(at, at_list, &mut sums);
         for (k, node) in nodes.iter().enumerate() {
-            emit(*node, n[k], grad[k], out);
+            emit(*node, &sums[k], out);
         }
     }
 }
@@ -163,16 +162,46 @@ pub(crate) fn four_node_box<const D: usize>(cells: &[[i64; D]]) -> Option<[i64; 
 /// The vertices, the cells that hold them and their local coordinates in those cells.
 type Placed<'a, const D: usize> = (&'a [Vertex<D>], &'a [[i64; D]; 8], &'a [SVector<f64, D>; 8]);
 
+/// One entry's sums (N, ∇N_1, ..., ∇N_D, then zeros), the four numbers one 256-bit
+/// operation updates.
+#[derive(Clone, Copy)]
+#[repr(align(32))]
+struct Sums([f64; 4]);
+
+impl Sums {
+    const ZERO: Sums = Sums([0.0; 4]);
+
+    /// A vertex's weight share w and gradient vector g (`Vertex`) as one entry's sums.
+    #[inline(always)]
+    fn of_vertex<const D: usize>(share: f64, g: &SVector<f64, D>) -> Sums {
+        Sums(std::array::from_fn(|l| match l {
+            0 => share,
+            _ if l <= D => g[l - 1],
+            _ => 0.0,
+        }))
+    }
+
+    /// self += v w, lane by lane (the products and sums of N += w_j N_c and
+    /// ∇N += g_j N_c).
+    #[inline(always)]
+    fn add_scaled(&mut self, v: &Sums, w: f64) {
+        for l in 0..4 {
+            self.0[l] += v.0[l] * w;
+        }
+    }
+}
+
 /// Add the share of each vertex, weight share w and gradient vector g (`Vertex`) times the
 /// linear weight of each corner c of its cell, to the entries `slot(cell, c)`.
 #[inline(always)]
 fn spread<const D: usize>(
     (vertices, cell, local): Placed<'_, D>,
     mut slot: impl FnMut(&[i64; D], usize) -> usize,
-    n: &mut [f64],
-    grad: &mut [SVector<f64, D>],
+    sums: &mut [Sums],
 ) {
+    const { assert!(D <= 3, "N and the D entries of ∇N fill at most four lanes") };
     for (j, (_, share, g)) in vertices.iter().enumerate() {
+        let vertex = Sums::of_vertex(*share, g);
         // corner weights Π_k (1 − ξ_k or ξ_k), built axis by axis (x fastest)
         let mut weight = [0.0; 8];
         weight[0] = 1.0;
@@ -184,21 +213,15 @@ fn spread<const D: usize>(
             }
         }
         for (c, &w) in weight.iter().enumerate().take(corners(D)) {
-            let k = slot(&cell[j], c);
-            n[k] += share * w;
-            grad[k] += g * w;
+            sums[slot(&cell[j], c)].add_scaled(&vertex, w);
         }
     }
 }
 
-/// Node `offset` with N and ∇N to `out`, unless both are zero (not reached).
+/// Node `offset` with N and ∇N (`sums`) to `out`, unless both are zero (not reached).
 #[inline]
-fn emit<const D: usize>(
-    offset: [i64; D],
-    n: f64,
-    grad: SVector<f64, D>,
-    out: &mut impl Weights<D>,
-) {
+fn emit<const D: usize>(offset: [i64; D], sums: &Sums, out: &mut impl Weights<D>) {
+    let (n, grad) = (sums.0[0], SVector::<f64, D>::from_fn(|k, _| sums.0[k + 1]));
     if n != 0.0 || grad != SVector::<f64, D>::zeros() {
         out.push(offset, n, grad);
     }
