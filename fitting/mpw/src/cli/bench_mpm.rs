@@ -211,8 +211,9 @@ fn measure(
                     .filter(|(new, old)| new.alpha > old.alpha)
                     .count();
                 // this step's material updates again, alone: its new F on the old history, in
-                // the step's batches, on the step's warm threads (a plain rayon loop here
-                // would run on this thread alone: the pool's other threads wait in the team)
+                // the step's batches, on the step's warm threads (a plain rayon loop here ran
+                // no faster on two threads than on one: the pool's other threads wait in the
+                // team and look for rayon's jobs only between spins)
                 let start = Instant::now();
                 let piece = parallel::MATERIAL_PIECE;
                 let pieces =
