@@ -218,11 +218,19 @@ fn spread<const D: usize>(
     }
 }
 
-/// Node `offset` with N and ∇N (`sums`) to `out`, unless both are zero (not reached).
+/// Whether the vertices reach a node whose sums are N and ∇N: not both zero. The vertex
+/// form's lists hold only the nodes reached (the derivative pass keeps the others, whose
+/// derivatives need not be zero, and leaves them out of the weights it gives the run).
+#[inline]
+pub(crate) fn reached<const D: usize>(n: f64, grad: &SVector<f64, D>) -> bool {
+    n != 0.0 || *grad != SVector::<f64, D>::zeros()
+}
+
+/// Node `offset` with N and ∇N (`sums`) to `out`, if the vertices reach it.
 #[inline]
 fn emit<const D: usize>(offset: [i64; D], sums: &Sums, out: &mut impl Weights<D>) {
     let (n, grad) = (sums.0[0], SVector::<f64, D>::from_fn(|k, _| sums.0[k + 1]));
-    if n != 0.0 || grad != SVector::<f64, D>::zeros() {
+    if reached(n, &grad) {
         out.push(offset, n, grad);
     }
 }

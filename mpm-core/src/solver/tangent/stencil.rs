@@ -21,7 +21,7 @@
 use super::Dual;
 use crate::grid::{floor_i64, Grid};
 use crate::parallel;
-use crate::shape::cpdi::four_node_box;
+use crate::shape::cpdi::{four_node_box, reached};
 use crate::shape::domain::{Deformed, Follow, Stretched};
 use crate::shape::gimp::averaged_hat;
 use crate::shape::{box_indices, corners, linear, Reach, ShapeFunction};
@@ -138,7 +138,7 @@ impl<const D: usize, const P: usize> DualStencils<D, P> {
         let (node, n, grad) = self.of(i);
         for k in 0..node.len() {
             let (n, grad) = (n[k].re, grad[k].map(|g| g.re));
-            if !self.listed[i].vertex_form || n != 0.0 || grad != SVector::<f64, D>::zeros() {
+            if !self.listed[i].vertex_form || reached(n, &grad) {
                 out.push_node(node[k], n, grad);
             }
         }
